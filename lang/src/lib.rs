@@ -1,0 +1,12 @@
+//! The Radiance languages as data: scene files (`.rad`) and calcomp (`.cal`).
+//!
+//! `lang` never does IO except through the text handed to it, never prints and never
+//! spawns a process: the CLI and the language server are the only places that touch
+//! the outside world, so both see exactly the same diagnostics.
+
+pub mod diagnostic;
+pub mod schema;
+pub mod source;
+
+pub use diagnostic::{Code, Diagnostic, Label, Severity};
+pub use source::{FileId, LineIndex, Span};
