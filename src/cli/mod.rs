@@ -1,0 +1,53 @@
+//! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
+
+use std::process::ExitCode;
+
+/// A subcommand: its name, a one-line summary for `radc help`, and its entry point
+/// taking the arguments after the name.
+struct Command {
+    name: &'static str,
+    summary: &'static str,
+    run: fn(&[String]) -> ExitCode,
+}
+
+/// Every subcommand, in the order `radc help` lists them.
+const COMMANDS: &[Command] = &[
+    Command {
+        name: "help",
+        summary: "list the commands",
+        run: help,
+    },
+];
+
+pub const USAGE_ERROR: u8 = 2;
+
+pub fn dispatch(args: &[String]) -> ExitCode {
+    let Some(name) = args.first() else {
+        help(&[]);
+        return ExitCode::from(USAGE_ERROR);
+    };
+    let name = match name.as_str() {
+        "-h" | "--help" => "help",
+        "-V" | "--version" => {
+            println!("radc {}", env!("CARGO_PKG_VERSION"));
+            return ExitCode::SUCCESS;
+        }
+        n => n,
+    };
+    match COMMANDS.iter().find(|c| c.name == name) {
+        Some(c) => (c.run)(&args[1..]),
+        None => {
+            eprintln!("radc: unknown command '{name}'; run 'radc help' for the list");
+            ExitCode::from(USAGE_ERROR)
+        }
+    }
+}
+
+fn help(_: &[String]) -> ExitCode {
+    println!("radc {}: a toolchain for the RADIANCE languages\n", env!("CARGO_PKG_VERSION"));
+    println!("usage: radc <command> [options]\n\ncommands:");
+    for c in COMMANDS {
+        println!("  {:<10} {}", c.name, c.summary);
+    }
+    ExitCode::SUCCESS
+}
