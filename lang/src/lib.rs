@@ -5,6 +5,7 @@
 //! the outside world, so both see exactly the same diagnostics.
 
 pub mod diagnostic;
+pub mod scene;
 pub mod schema;
 pub mod source;
 

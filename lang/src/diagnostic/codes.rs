@@ -18,7 +18,6 @@ macro_rules! codes {
 
 codes! {
     // --- scene syntax -------------------------------------------------------------
-    E0101 = "E0101" "invalid-utf8" Error: "The file is not valid UTF-8 text.";
     E0102 = "E0102" "unexpected-end" Error: "The file ends in the middle of a primitive.";
     E0103 = "E0103" "bad-count" Error: "An argument count is not a non-negative integer.";
     E0104 = "E0104" "bad-real" Error: "A real argument is not a number Radiance can read.";
@@ -42,6 +41,8 @@ codes! {
     E0306 = "E0306" "degenerate-geometry" Error: "The geometry has no extent (zero radius, equal cone ends, zero-area polygon).";
     E0307 = "E0307" "command-refused" Error: "A '!' command is not a built-in generator and running commands was not allowed.";
     // --- scene warnings -----------------------------------------------------------
+    W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
+    W0102 = "W0102" "long-word" Warning: "A word is longer than the 511 characters Radiance reads; Radiance splits it.";
     W0201 = "W0201" "value-out-of-range" Warning: "An argument is outside its physically plausible range.";
     W0202 = "W0202" "negative-radius" Warning: "A negative radius flips the surface's orientation (Radiance changes its type).";
     W0203 = "W0203" "nonplanar-polygon" Warning: "A polygon's vertices do not lie in one plane.";
