@@ -545,7 +545,7 @@ mod tests {
         // One word per line: the token is exactly the word Radiance reads. (Several
         // words after a `#` inside arguments are reported as a misplaced comment, the
         // one place radc is stricter than Radiance.)
-        let (scene, diags) = parse0("void colortext t 2 #x\n!y\n0 0\n");
+        let (scene, diags) = parse0("void polygon t 2 #x\n!y\n0 0\n");
         assert!(diags.is_empty(), "{diags:?}");
         let p = scene.primitives().next().unwrap();
         assert_eq!(p.strings.items[0].text, "#x");
