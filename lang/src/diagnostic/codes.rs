@@ -31,14 +31,14 @@ codes! {
     E0201 = "E0201" "unknown-type" Error: "The primitive type is not one Radiance knows.";
     E0202 = "E0202" "wrong-arg-count" Error: "The number of string or real arguments does not fit the type.";
     E0203 = "E0203" "bad-arg-value" Error: "An argument's value violates the type's constraint.";
-    E0204 = "E0204" "reserved-name" Error: "A primitive is named 'void' or 'inherit'.";
+    E0204 = "E0204" "reserved-name" Error: "A modifier is named 'void' or 'inherit'.";
+    E0206 = "E0206" "inherit-misuse" Error: "The 'inherit' modifier is used by something other than an alias.";
     E0205 = "E0205" "bad-transform" Error: "A transform argument list cannot be parsed.";
     E0301 = "E0301" "undefined-modifier" Error: "The modifier is not defined earlier in the scene.";
     E0302 = "E0302" "wrong-modifier-kind" Error: "The modifier is of a kind that cannot modify this primitive.";
     E0303 = "E0303" "undefined-alias-target" Error: "An alias refers to a name not defined earlier.";
     E0304 = "E0304" "alias-of-surface" Error: "An alias refers to a surface; only modifiers can be aliased.";
     E0305 = "E0305" "missing-file" Error: "A file named by an argument is not found in the scene's folder or RAYPATH.";
-    E0306 = "E0306" "degenerate-geometry" Error: "The geometry has no extent (zero radius, equal cone ends, zero-area polygon).";
     E0307 = "E0307" "command-refused" Error: "A '!' command is not a built-in generator and running commands was not allowed.";
     // --- scene warnings -----------------------------------------------------------
     W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
@@ -47,6 +47,7 @@ codes! {
     W0202 = "W0202" "negative-radius" Warning: "A negative radius flips the surface's orientation (Radiance changes its type).";
     W0203 = "W0203" "nonplanar-polygon" Warning: "A polygon's vertices do not lie in one plane.";
     W0204 = "W0204" "degenerate-polygon" Warning: "A polygon has zero area or collinear vertices.";
+    W0206 = "W0206" "degenerate-geometry" Warning: "The geometry has no extent (zero radius, equal cone ends, zero normal); Radiance drops it.";
     W0205 = "W0205" "cone-equal-radii" Warning: "A cone or cup with equal radii is a cylinder or tube.";
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";

@@ -1,0 +1,737 @@
+//! Lowering a parsed scene to the typed IR, and every check that needs meaning:
+//! argument counts and values against the schema, modifier resolution, aliases,
+//! geometry sanity, auxiliary files and unused modifiers.
+//!
+//! Checks follow what Radiance does (`readobj.c`, `modobject.c`, the `o_*.c` and
+//! `m_*.c` argument checks): anything Radiance rejects, at oconv time or later at
+//! render time, is an error here; anything it accepts with a warning, or accepts but
+//! is almost certainly a mistake, is a warning.
+
+use std::collections::{HashMap, HashSet};
+
+use super::ir::{ModRef, Prim, PrimId, PrimKind, Rgb, Scene, Vec3};
+use super::syntax::{Alias, Item, Primitive, SceneFile, Word};
+use crate::diagnostic::{self as codes, Diagnostic, suggest};
+use crate::schema::{self, ArgList, Category, FileKind, PrimitiveType, StringKind};
+use crate::source::{FileId, Span};
+
+/// Answers whether an auxiliary file named in a scene exists. The CLI searches the
+/// scene's folder and RAYPATH; `lang` itself never touches the file system.
+pub trait FileLookup {
+    fn exists(&self, name: &str, kind: FileKind, from: FileId) -> bool;
+}
+
+/// For callers with no file system (or who don't want file checks).
+pub struct AssumeFilesExist;
+
+impl FileLookup for AssumeFilesExist {
+    fn exists(&self, _: &str, _: FileKind, _: FileId) -> bool {
+        true
+    }
+}
+
+/// One parsed input file, with whether unused modifiers defined in it are worth a
+/// warning (not for material libraries, which exist to be picked from).
+pub struct LowerInput<'a> {
+    pub file: FileId,
+    pub syntax: &'a SceneFile,
+    pub warn_unused: bool,
+}
+
+/// Lowers files read in order into one scene, as oconv reads its arguments.
+pub fn lower(inputs: &[LowerInput<'_>], files: &dyn FileLookup) -> (Scene, Vec<Diagnostic>) {
+    let mut cx = Lowering {
+        scene: Scene::default(),
+        diags: Vec::new(),
+        modifiers: HashMap::new(),
+        surfaces: HashMap::new(),
+        unknown: HashSet::new(),
+        used: HashSet::new(),
+        warn_unused: Vec::new(),
+        files,
+    };
+    for input in inputs {
+        for item in &input.syntax.items {
+            match item {
+                Item::Primitive(p) => cx.primitive(p, input.warn_unused),
+                Item::Alias(a) => cx.alias(a, input.warn_unused),
+                Item::Command(c) => cx.diags.push(
+                    Diagnostic::new(
+                        codes::W0303,
+                        c.span,
+                        "this '!' command was not run, so what it makes is not checked",
+                    )
+                    .with_hint("radc never runs shell commands while checking"),
+                ),
+                Item::Comment(_) | Item::Error(_) => {}
+            }
+        }
+    }
+    cx.report_unused();
+    (cx.scene, cx.diags)
+}
+
+struct Lowering<'a> {
+    scene: Scene,
+    diags: Vec<Diagnostic>,
+    /// Modifier name -> most recent definition.
+    modifiers: HashMap<String, PrimId>,
+    /// Surface names, to explain "that's a surface, not a modifier".
+    surfaces: HashMap<String, Span>,
+    /// Names defined by primitives of unknown type: uses are not reported again.
+    unknown: HashSet<String>,
+    used: HashSet<PrimId>,
+    warn_unused: Vec<bool>,
+    files: &'a dyn FileLookup,
+}
+
+impl Lowering<'_> {
+    fn push(&mut self, prim: Prim, warn_unused: bool) -> PrimId {
+        let id = PrimId(self.scene.prims.len() as u32);
+        self.scene.prims.push(prim);
+        self.warn_unused.push(warn_unused);
+        id
+    }
+
+    fn primitive(&mut self, p: &Primitive, warn_unused: bool) {
+        let Some(schema) = schema::lookup(&p.kind.text) else {
+            // The parser reported the unknown type.
+            self.unknown.insert(p.name.text.clone());
+            return;
+        };
+        if schema.category == Category::Alias {
+            return;
+        }
+        let modifier = self.resolve_modifier(&p.modifier, schema);
+        let counts_ok = self.check_counts(p, schema);
+        if counts_ok {
+            self.check_values(p, schema);
+            self.check_files(p, schema);
+        }
+        let refs = if counts_ok {
+            self.string_modifier_refs(p, schema)
+        } else {
+            Vec::new()
+        };
+        let kind = if counts_ok {
+            self.lower_kind(p, schema)
+        } else {
+            other(p)
+        };
+        let prim = Prim {
+            name: p.name.text.clone(),
+            schema,
+            modifier,
+            refs,
+            kind,
+            span: p.span,
+        };
+        self.define(prim, &p.name, warn_unused);
+    }
+
+    /// Records a new primitive and, for modifiers, binds its name.
+    fn define(&mut self, prim: Prim, name: &Word, warn_unused: bool) {
+        let category = prim.category();
+        let id = self.push(prim, warn_unused);
+        if category == Category::Surface {
+            self.surfaces.insert(name.text.clone(), name.span);
+            return;
+        }
+        if name.text == "void" || name.text == "inherit" {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0204,
+                    name.span,
+                    format!("a modifier cannot be named '{}'", name.text),
+                )
+                .with_hint("'void' and 'inherit' are reserved words; choose another name"),
+            );
+            return;
+        }
+        if let Some(&old) = self.modifiers.get(&name.text) {
+            self.redefinition(old, id, name);
+        }
+        self.modifiers.insert(name.text.clone(), id);
+    }
+
+    /// Radiance silently keeps an identical redefinition; a different one rebinds the
+    /// name for later uses only, which is worth a warning.
+    fn redefinition(&mut self, old: PrimId, new: PrimId, name: &Word) {
+        let (Some(a), Some(b)) = (self.scene.get(old), self.scene.get(new)) else {
+            return;
+        };
+        if a.kind == b.kind && a.schema.name == b.schema.name && a.modifier == b.modifier {
+            return;
+        }
+        let old_span = a.span;
+        self.diags.push(
+            Diagnostic::new(
+                codes::W0302,
+                name.span,
+                format!("modifier '{}' is defined again", name.text),
+            )
+            .with_label(old_span, "earlier definition")
+            .with_hint("primitives above this line keep using the earlier definition"),
+        );
+    }
+
+    fn resolve_modifier(&mut self, word: &Word, schema: &PrimitiveType) -> ModRef {
+        match word.text.as_str() {
+            "void" => ModRef::Void,
+            "inherit" => {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0206,
+                        word.span,
+                        format!("'inherit' cannot be the modifier of a {}", schema.name),
+                    )
+                    .with_hint("only an alias may use 'inherit' (`inherit alias new old`)"),
+                );
+                ModRef::Unresolved
+            }
+            name => self.lookup_modifier(name, word.span),
+        }
+    }
+
+    /// Finds the most recent earlier modifier of this name, reporting if there is none.
+    fn lookup_modifier(&mut self, name: &str, span: Span) -> ModRef {
+        if let Some(&id) = self.modifiers.get(name) {
+            self.used.insert(id);
+            return ModRef::Prim(id);
+        }
+        if self.unknown.contains(name) {
+            return ModRef::Unresolved;
+        }
+        if let Some(&surface) = self.surfaces.get(name) {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0302,
+                    span,
+                    format!("'{name}' is a surface, not a modifier"),
+                )
+                .with_label(surface, "defined here as a surface")
+                .with_hint("a modifier must be a material, pattern, texture, mixture or alias"),
+            );
+            return ModRef::Unresolved;
+        }
+        let mut d = Diagnostic::new(
+            codes::E0301,
+            span,
+            format!("modifier '{name}' is not defined before this point"),
+        );
+        let known = self.modifiers.keys().map(String::as_str);
+        d = match suggest(name, known) {
+            Some(s) => d.with_hint(format!("did you mean '{s}'?")),
+            None => d.with_hint(
+                "define the material above its first use, or use 'void' for no modifier",
+            ),
+        };
+        self.diags.push(d);
+        ModRef::Unresolved
+    }
+
+    fn alias(&mut self, a: &Alias, warn_unused: bool) {
+        let Some(schema) = schema::lookup("alias") else {
+            return;
+        };
+        let target = match self.modifiers.get(&a.target.text) {
+            Some(&id) => {
+                self.used.insert(id);
+                Some(id)
+            }
+            None => {
+                self.bad_alias_target(a);
+                None
+            }
+        };
+        let modifier = match a.modifier.text.as_str() {
+            "inherit" => ModRef::Inherit,
+            "void" => ModRef::Void,
+            m => self.lookup_modifier(m, a.modifier.span),
+        };
+        let kind = match target {
+            Some(target) => PrimKind::Alias { target },
+            None => PrimKind::Other {
+                strings: vec![a.target.text.clone()],
+                reals: Vec::new(),
+            },
+        };
+        let prim = Prim {
+            name: a.name.text.clone(),
+            schema,
+            modifier,
+            refs: Vec::new(),
+            kind,
+            span: a.span,
+        };
+        self.define(prim, &a.name, warn_unused);
+    }
+
+    fn bad_alias_target(&mut self, a: &Alias) {
+        let name = &a.target.text;
+        if self.unknown.contains(name) {
+            return;
+        }
+        if let Some(&surface) = self.surfaces.get(name) {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0304,
+                    a.target.span,
+                    format!("'{name}' is a surface; only modifiers can be aliased"),
+                )
+                .with_label(surface, "defined here as a surface"),
+            );
+            return;
+        }
+        let mut d = Diagnostic::new(
+            codes::E0303,
+            a.target.span,
+            format!("alias '{}' refers to '{name}', which is not defined before it", a.name.text),
+        );
+        if let Some(s) = suggest(name, self.modifiers.keys().map(String::as_str)) {
+            d = d.with_hint(format!("did you mean '{s}'?"));
+        }
+        self.diags.push(d);
+    }
+
+    /// Argument counts against the schema. Returns whether both lists fit.
+    fn check_counts(&mut self, p: &Primitive, schema: &PrimitiveType) -> bool {
+        let mut ok = true;
+        for (what, list, n, span) in [
+            ("string", schema.strings, p.strings.len(), p.strings.count_span),
+            ("real", schema.reals, p.reals.len(), p.reals.count_span),
+        ] {
+            let n = u32::try_from(n).unwrap_or(u32::MAX);
+            if list.count.accepts(n) {
+                continue;
+            }
+            ok = false;
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0202,
+                    span,
+                    format!(
+                        "{} takes {} {what} argument{}, found {n}",
+                        schema.name,
+                        list.count.describe(),
+                        if list.count == schema::Count::Exactly(1) { "" } else { "s" },
+                    ),
+                )
+                .with_label(p.kind.span, format!("{} {}", schema.category.as_str(), schema.name))
+                .with_hint(layout_hint(schema.name, what, &list)),
+            );
+        }
+        ok
+    }
+
+    /// Hard limits (errors) and plausible ranges (warnings) of real arguments. Surface
+    /// geometry is judged in `lower_kind`, where Radiance's own rules are known.
+    fn check_values(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let geometry = schema.category == Category::Surface;
+        for (i, r) in p.reals.items.iter().enumerate() {
+            let Some((arg, _)) = schema.reals.arg_at(i) else {
+                continue;
+            };
+            if !r.value.is_finite() {
+                self.diags.push(Diagnostic::new(
+                    codes::E0203,
+                    r.span,
+                    format!("{} of {} '{}' overflows to infinity", arg.name, schema.name, p.name.text),
+                ));
+            } else if !geometry && !arg.valid.contains(r.value) {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0203,
+                        r.span,
+                        format!(
+                            "{} of {} '{}' is {}, but must be {}",
+                            arg.name,
+                            schema.name,
+                            p.name.text,
+                            r.value,
+                            arg.valid.describe()
+                        ),
+                    )
+                    .with_hint(format!("{}: {}", arg.name, arg.meaning)),
+                );
+            } else if !arg.plausible.contains(r.value) {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::W0201,
+                        r.span,
+                        format!(
+                            "{} of {} '{}' is {}, outside the usual range ({})",
+                            arg.name,
+                            schema.name,
+                            p.name.text,
+                            r.value,
+                            arg.plausible.describe()
+                        ),
+                    )
+                    .with_hint(format!("{}: {}", arg.name, arg.meaning)),
+                );
+            }
+        }
+    }
+
+    fn check_files(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        for (i, w) in p.strings.items.iter().enumerate() {
+            let Some((arg, _)) = schema.strings.arg_at(i) else {
+                continue;
+            };
+            if arg.kind == StringKind::Transform {
+                break;
+            }
+            let StringKind::File(kind) = arg.kind else {
+                continue;
+            };
+            if kind == FileKind::Cal && w.text == "." {
+                continue;
+            }
+            if !self.files.exists(&w.text, kind, w.span.file) {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0305,
+                        w.span,
+                        format!("file '{}' not found", w.text),
+                    )
+                    .with_hint(
+                        "radc looks in the scene's folder, then each folder of RAYPATH \
+                         (Radiance's library is found there when RAYPATH is set)",
+                    ),
+                );
+            }
+        }
+    }
+
+    fn string_modifier_refs(&mut self, p: &Primitive, schema: &PrimitiveType) -> Vec<PrimId> {
+        let mut refs = Vec::new();
+        for (i, w) in p.strings.items.iter().enumerate() {
+            let Some((arg, _)) = schema.strings.arg_at(i) else {
+                continue;
+            };
+            if arg.kind == StringKind::Transform {
+                break;
+            }
+            if arg.kind != StringKind::Modifier || w.text == "void" {
+                continue;
+            }
+            if let ModRef::Prim(id) = self.lookup_modifier(&w.text, w.span) {
+                refs.push(id);
+            }
+        }
+        refs
+    }
+
+    fn report_unused(&mut self) {
+        let mut referenced = self.used.clone();
+        for p in &self.scene.prims {
+            if let ModRef::Prim(m) = p.modifier {
+                referenced.insert(m);
+            }
+        }
+        for (i, p) in self.scene.prims.iter().enumerate() {
+            let id = PrimId(i as u32);
+            if p.category() == Category::Surface
+                || referenced.contains(&id)
+                || !self.warn_unused.get(i).copied().unwrap_or(false)
+            {
+                continue;
+            }
+            self.diags.push(
+                Diagnostic::new(
+                    codes::W0301,
+                    p.span,
+                    format!("{} '{}' is never used", p.schema.name, p.name),
+                )
+                .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
+            );
+        }
+    }
+
+    /// The typed form; counts are already known to fit the schema.
+    fn lower_kind(&mut self, p: &Primitive, schema: &PrimitiveType) -> PrimKind {
+        // Counts were checked against the schema, but indexing stays total so a schema
+        // slip can never become a panic on user input.
+        let values: Vec<f64> = p.reals.items.iter().map(|r| r.value).collect();
+        let r = Reals(&values);
+        let s: Vec<String> = p.strings.items.iter().map(|w| w.text.clone()).collect();
+        let v3 = |i: usize| -> Vec3 { [r[i], r[i + 1], r[i + 2]] };
+        let rgb = |i: usize| -> Rgb { [r[i], r[i + 1], r[i + 2]] };
+        let first_string = || s.first().cloned();
+        match schema.name {
+            "source" => PrimKind::Source {
+                direction: v3(0),
+                angle: r[3],
+            },
+            "sphere" | "bubble" => {
+                self.check_radius(p, r[3], 3);
+                let (center, radius) = (v3(0), r[3]);
+                if (schema.name == "sphere") == (radius >= 0.0) {
+                    PrimKind::Sphere { center, radius: radius.abs() }
+                } else {
+                    PrimKind::Bubble { center, radius: radius.abs() }
+                }
+            }
+            "polygon" => {
+                let vertices: Vec<Vec3> = values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+                self.check_polygon(p, &vertices);
+                PrimKind::Polygon { vertices }
+            }
+            "cone" | "cup" => {
+                let (p0, p1, r0, r1) = (v3(0), v3(3), r[6], r[7]);
+                self.check_axis(p, p0, p1);
+                self.check_cone_radii(p, r0, r1);
+                if (schema.name == "cone") == (r0 >= 0.0 && r1 >= 0.0) {
+                    PrimKind::Cone { p0, p1, r0: r0.abs(), r1: r1.abs() }
+                } else {
+                    PrimKind::Cup { p0, p1, r0: r0.abs(), r1: r1.abs() }
+                }
+            }
+            "cylinder" | "tube" => {
+                let (p0, p1, radius) = (v3(0), v3(3), r[6]);
+                self.check_axis(p, p0, p1);
+                self.check_radius(p, radius, 6);
+                if (schema.name == "cylinder") == (radius >= 0.0) {
+                    PrimKind::Cylinder { p0, p1, radius: radius.abs() }
+                } else {
+                    PrimKind::Tube { p0, p1, radius: radius.abs() }
+                }
+            }
+            "ring" => {
+                let (center, normal, r0, r1) = (v3(0), v3(3), r[6], r[7]);
+                if norm(normal) == 0.0 {
+                    self.degenerate(p, real_span(p, 3).to(real_span(p, 5)), "its normal is the zero vector");
+                }
+                self.check_ring_radii(p, r0, r1);
+                PrimKind::Ring { center, normal, r0: r0.min(r1), r1: r0.max(r1) }
+            }
+            "instance" => PrimKind::Instance {
+                octree: first_string().unwrap_or_default(),
+                transform: s.iter().skip(1).cloned().collect(),
+            },
+            "mesh" => PrimKind::Mesh {
+                file: first_string().unwrap_or_default(),
+                transform: s.iter().skip(1).cloned().collect(),
+            },
+            "light" => PrimKind::Light { color: rgb(0) },
+            "illum" => PrimKind::Illum { alternate: first_string(), color: rgb(0) },
+            "glow" => PrimKind::Glow { color: rgb(0), max_radius: r[3] },
+            "spotlight" => PrimKind::Spotlight { color: rgb(0), angle: r[3], direction: v3(4) },
+            "mirror" => PrimKind::Mirror { alternate: first_string(), color: rgb(0) },
+            "plastic" => PrimKind::Plastic { color: rgb(0), spec: r[3], rough: r[4] },
+            "metal" => PrimKind::Metal { color: rgb(0), spec: r[3], rough: r[4] },
+            "trans" => PrimKind::Trans {
+                color: rgb(0),
+                spec: r[3],
+                rough: r[4],
+                trans: r[5],
+                tspec: r[6],
+            },
+            "glass" => PrimKind::Glass {
+                transmission: rgb(0),
+                // Radiance's default index of refraction for glass.
+                index: values.get(3).copied().unwrap_or(1.52),
+            },
+            "dielectric" => PrimKind::Dielectric { transmission: rgb(0), index: r[3], hartmann: r[4] },
+            "interface" => PrimKind::Interface { t1: rgb(0), n1: r[3], t2: rgb(4), n2: r[7] },
+            "antimatter" => PrimKind::Antimatter { modifiers: s },
+            _ => other(p),
+        }
+    }
+
+    fn degenerate(&mut self, p: &Primitive, span: Span, why: &str) {
+        self.diags.push(
+            Diagnostic::new(
+                codes::W0206,
+                span,
+                format!("{} '{}' is degenerate: {why}", p.kind.text, p.name.text),
+            )
+            .with_hint("Radiance drops degenerate surfaces with a warning; fix or remove it"),
+        );
+    }
+
+    fn check_radius(&mut self, p: &Primitive, radius: f64, index: usize) {
+        let span = real_span(p, index);
+        if radius == 0.0 {
+            self.degenerate(p, span, "its radius is zero");
+        } else if radius < 0.0 {
+            let flipped = match p.kind.text.as_str() {
+                "sphere" => "bubble",
+                "bubble" => "sphere",
+                "cylinder" => "tube",
+                "tube" => "cylinder",
+                _ => "its inside-out twin",
+            };
+            self.diags.push(
+                Diagnostic::new(
+                    codes::W0202,
+                    span,
+                    format!("negative radius: Radiance reads this {} as a {flipped}", p.kind.text),
+                )
+                .with_hint(format!("write a positive radius, or use the type '{flipped}' if the normals should point inward")),
+            );
+        }
+    }
+
+    fn check_axis(&mut self, p: &Primitive, p0: Vec3, p1: Vec3) {
+        if p0 == p1 {
+            let span = real_span(p, 0).to(real_span(p, 5));
+            self.degenerate(p, span, "both end points are the same, so it has no axis");
+        }
+    }
+
+    fn check_cone_radii(&mut self, p: &Primitive, r0: f64, r1: f64) {
+        let span = real_span(p, 6).to(real_span(p, 7));
+        if (r0 < 0.0) != (r1 < 0.0) && r0 != 0.0 && r1 != 0.0 {
+            self.degenerate(p, span, "its radii have opposite signs");
+        } else if r0 == 0.0 && r1 == 0.0 {
+            self.degenerate(p, span, "both radii are zero");
+        } else if r0 == r1 {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::W0205,
+                    span,
+                    format!("{} '{}' has equal radii", p.kind.text, p.name.text),
+                )
+                .with_hint(if p.kind.text == "cone" {
+                    "use a cylinder: Radiance converts it anyway"
+                } else {
+                    "use a tube: Radiance converts it anyway"
+                }),
+            );
+        } else if r0 < 0.0 && r1 < 0.0 {
+            self.diags.push(Diagnostic::new(
+                codes::W0202,
+                span,
+                format!("negative radii: Radiance reads this {} inside out", p.kind.text),
+            ));
+        }
+    }
+
+    fn check_ring_radii(&mut self, p: &Primitive, r0: f64, r1: f64) {
+        let span = real_span(p, 6).to(real_span(p, 7));
+        if r0 < 0.0 || r1 < 0.0 || r0 == r1 {
+            self.degenerate(p, span, "its radii must be >= 0 and differ");
+        }
+    }
+
+    /// Zero area and non-planarity, judged as Radiance's face setup does: the normal
+    /// from Newell's method, and each vertex's distance from the plane.
+    fn check_polygon(&mut self, p: &Primitive, vertices: &[Vec3]) {
+        if vertices.len() < 3 {
+            return;
+        }
+        let n = newell_normal(vertices);
+        let area2 = norm(n);
+        let span = p.reals.span_all();
+        if area2 == 0.0 || !area2.is_finite() {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::W0204,
+                    span,
+                    format!("polygon '{}' has zero area (its vertices are collinear or coincide)", p.name.text),
+                )
+                .with_hint("Radiance drops it with a warning"),
+            );
+            return;
+        }
+        let unit = [n[0] / area2, n[1] / area2, n[2] / area2];
+        let d0 = dot(unit, vertices[0]);
+        let size = vertices
+            .iter()
+            .flat_map(|v| v.iter())
+            .fold(0.0f64, |m, c| m.max(c.abs()))
+            .max(1.0);
+        if let Some((i, _)) = vertices
+            .iter()
+            .enumerate()
+            .find(|(_, v)| (dot(unit, **v) - d0).abs() > 1e-5 * size)
+        {
+            let s = real_span(p, i * 3).to(real_span(p, i * 3 + 2));
+            self.diags.push(
+                Diagnostic::new(
+                    codes::W0203,
+                    s,
+                    format!("vertex {} of polygon '{}' is out of the polygon's plane", i + 1, p.name.text),
+                )
+                .with_hint("split the polygon into planar pieces (triangles are always planar)"),
+            );
+        }
+    }
+}
+
+trait SpanAll {
+    fn span_all(&self) -> Span;
+}
+
+impl SpanAll for super::syntax::ArgGroup<super::syntax::Real> {
+    fn span_all(&self) -> Span {
+        match (self.items.first(), self.items.last()) {
+            (Some(a), Some(b)) => a.span.to(b.span),
+            _ => self.count_span,
+        }
+    }
+}
+
+fn other(p: &Primitive) -> PrimKind {
+    PrimKind::Other {
+        strings: p.strings.items.iter().map(|w| w.text.clone()).collect(),
+        reals: p.reals.items.iter().map(|r| r.value).collect(),
+    }
+}
+
+fn layout_hint(type_name: &str, what: &str, list: &ArgList) -> String {
+    let names: Vec<&str> = list.fixed.iter().map(|a| a.name).collect();
+    let repeat: Vec<&str> = list.repeat.iter().map(|a| a.name).collect();
+    let mut layout = names.join(" ");
+    if !repeat.is_empty() {
+        if !layout.is_empty() {
+            layout.push(' ');
+        }
+        layout.push_str(&format!("[{}]...", repeat.join(" ")));
+    }
+    if layout.is_empty() {
+        format!("{type_name} takes no {what} arguments: write 0")
+    } else {
+        format!("{type_name} {what} arguments: {layout}")
+    }
+}
+
+fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: Vec3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Newell's method: twice the vector area of a (possibly non-planar) polygon.
+fn newell_normal(v: &[Vec3]) -> Vec3 {
+    let mut n = [0.0; 3];
+    for (i, a) in v.iter().enumerate() {
+        let b = v[(i + 1) % v.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
+/// Total indexing into a real list: missing values read as 0.
+struct Reals<'a>(&'a [f64]);
+
+impl std::ops::Index<usize> for Reals<'_> {
+    type Output = f64;
+    fn index(&self, i: usize) -> &f64 {
+        self.0.get(i).unwrap_or(&0.0)
+    }
+}
+
+fn real_span(p: &Primitive, i: usize) -> Span {
+    p.reals
+        .items
+        .get(i)
+        .map(|r| r.span)
+        .unwrap_or(p.reals.count_span)
+}
