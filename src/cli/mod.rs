@@ -1,5 +1,8 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
+mod check;
+mod report;
+
 use std::process::ExitCode;
 
 /// A subcommand: its name, a one-line summary for `radc help`, and its entry point
@@ -12,6 +15,11 @@ struct Command {
 
 /// Every subcommand, in the order `radc help` lists them.
 const COMMANDS: &[Command] = &[
+    Command {
+        name: "check",
+        summary: "check scene files for errors (like oconv, but all errors at once)",
+        run: check::run,
+    },
     Command {
         name: "help",
         summary: "list the commands",

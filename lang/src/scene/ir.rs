@@ -29,6 +29,7 @@ pub enum ModRef {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Prim {
     pub name: String,
+    pub name_span: Span,
     pub schema: &'static PrimitiveType,
     pub modifier: ModRef,
     /// Other modifiers this one names in its string arguments (mixture foreground and

@@ -120,6 +120,7 @@ impl Lowering<'_> {
         };
         let prim = Prim {
             name: p.name.text.clone(),
+            name_span: p.name.span,
             schema,
             modifier,
             refs,
@@ -258,6 +259,7 @@ impl Lowering<'_> {
         };
         let prim = Prim {
             name: a.name.text.clone(),
+            name_span: a.name.span,
             schema,
             modifier,
             refs: Vec::new(),
@@ -441,7 +443,7 @@ impl Lowering<'_> {
             self.diags.push(
                 Diagnostic::new(
                     codes::W0301,
-                    p.span,
+                    p.name_span,
                     format!("{} '{}' is never used", p.schema.name, p.name),
                 )
                 .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
