@@ -30,6 +30,8 @@ pub enum ModRef {
 pub struct Prim {
     pub name: String,
     pub name_span: Span,
+    /// The span of the modifier word.
+    pub modifier_span: Span,
     pub schema: &'static PrimitiveType,
     pub modifier: ModRef,
     /// Other modifiers this one names in its string arguments (mixture foreground and

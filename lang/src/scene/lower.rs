@@ -68,6 +68,7 @@ pub fn lower(inputs: &[LowerInput<'_>], files: &dyn FileLookup) -> (Scene, Vec<D
         }
     }
     cx.report_unused();
+    cx.report_conflicting_materials();
     (cx.scene, cx.diags)
 }
 
@@ -121,6 +122,7 @@ impl Lowering<'_> {
         let prim = Prim {
             name: p.name.text.clone(),
             name_span: p.name.span,
+            modifier_span: p.modifier.span,
             schema,
             modifier,
             refs,
@@ -260,6 +262,7 @@ impl Lowering<'_> {
         let prim = Prim {
             name: a.name.text.clone(),
             name_span: a.name.span,
+            modifier_span: a.modifier.span,
             schema,
             modifier,
             refs: Vec::new(),
@@ -447,6 +450,69 @@ impl Lowering<'_> {
                     format!("{} '{}' is never used", p.schema.name, p.name),
                 )
                 .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
+            );
+        }
+    }
+
+    /// What an element of a modifier chain really is: aliases are followed to their
+    /// target's type, and take either their own modifier or (with `inherit`) the
+    /// target's. Returns the category and the next link of the chain.
+    fn chain_link(&self, id: PrimId) -> Option<(Category, ModRef)> {
+        let mut cur = self.scene.get(id)?;
+        let mut modifier = cur.modifier;
+        for _ in 0..64 {
+            match cur.kind {
+                PrimKind::Alias { target } => {
+                    cur = self.scene.get(target)?;
+                    if modifier == ModRef::Inherit {
+                        modifier = cur.modifier;
+                    }
+                }
+                _ => return Some((cur.category(), modifier)),
+            }
+        }
+        None
+    }
+
+    /// Radiance shades a hit with the first material in the surface's modifier chain
+    /// and then applies the rest of the chain as patterns and textures; a second
+    /// material there is fatal ("conflicting material", `raytexture` in raytrace.c)
+    /// as soon as a ray hits it.
+    fn report_conflicting_materials(&mut self) {
+        let is_material = |c: Category| matches!(c, Category::Material | Category::Light);
+        let mut found = Vec::new();
+        for (i, p) in self.scene.prims.iter().enumerate() {
+            if !is_material(p.category()) || matches!(p.kind, PrimKind::Alias { .. }) {
+                continue;
+            }
+            let mut next = p.modifier;
+            for _ in 0..256 {
+                let ModRef::Prim(id) = next else { break };
+                let Some((category, modifier)) = self.chain_link(id) else {
+                    break;
+                };
+                if is_material(category) {
+                    found.push((PrimId(i as u32), id));
+                    break;
+                }
+                next = modifier;
+            }
+        }
+        for (user, material) in found {
+            let (Some(u), Some(m)) = (self.scene.get(user), self.scene.get(material)) else {
+                continue;
+            };
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0302,
+                    u.modifier_span,
+                    format!(
+                        "{} '{}' is modified by {} '{}': a material's modifiers may only be patterns, textures or mixtures of them",
+                        u.schema.name, u.name, m.schema.name, m.name
+                    ),
+                )
+                .with_label(m.name_span, "this material is further down the chain")
+                .with_hint("Radiance stops with \"conflicting material\" when a ray hits this; give the material the modifier 'void' or a pattern"),
             );
         }
     }
