@@ -217,6 +217,9 @@ impl Lowering<'_> {
             );
             return ModRef::Unresolved;
         }
+        // One report per undefined name: a generator's output missing its material
+        // would otherwise drown the file in identical errors.
+        self.unknown.insert(name.to_string());
         let mut d = Diagnostic::new(
             codes::E0301,
             span,
@@ -418,7 +421,7 @@ impl Lowering<'_> {
             if arg.kind == StringKind::Transform {
                 break;
             }
-            if arg.kind != StringKind::Modifier || w.text == "void" {
+            if arg.kind != StringKind::Modifier || w.text == "void" || w.text == "inherit" {
                 continue;
             }
             if let ModRef::Prim(id) = self.lookup_modifier(&w.text, w.span) {
