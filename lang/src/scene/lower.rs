@@ -9,8 +9,9 @@
 
 use std::collections::{HashMap, HashSet};
 
+use super::command::{CommandExpander, Expansion, MAX_DEPTH, NoCommands};
 use super::ir::{ModRef, Prim, PrimId, PrimKind, Rgb, Scene, Vec3};
-use super::syntax::{Alias, Item, Primitive, SceneFile, Word};
+use super::syntax::{Alias, Command, Item, Primitive, SceneFile, Word};
 use crate::diagnostic::{self as codes, Diagnostic, suggest};
 use crate::schema::{self, ArgList, Category, FileKind, PrimitiveType, StringKind};
 use crate::source::{FileId, Span};
@@ -38,8 +39,18 @@ pub struct LowerInput<'a> {
     pub warn_unused: bool,
 }
 
-/// Lowers files read in order into one scene, as oconv reads its arguments.
+/// Lowers files read in order into one scene, as oconv reads its arguments. `!`
+/// commands are reported as not expanded.
 pub fn lower(inputs: &[LowerInput<'_>], files: &dyn FileLookup) -> (Scene, Vec<Diagnostic>) {
+    lower_with(inputs, files, &NoCommands)
+}
+
+/// [`lower`], expanding `!` commands through `commands`.
+pub fn lower_with(
+    inputs: &[LowerInput<'_>],
+    files: &dyn FileLookup,
+    commands: &dyn CommandExpander,
+) -> (Scene, Vec<Diagnostic>) {
     let mut cx = Lowering {
         scene: Scene::default(),
         diags: Vec::new(),
@@ -49,23 +60,10 @@ pub fn lower(inputs: &[LowerInput<'_>], files: &dyn FileLookup) -> (Scene, Vec<D
         used: HashSet::new(),
         warn_unused: Vec::new(),
         files,
+        commands,
     };
     for input in inputs {
-        for item in &input.syntax.items {
-            match item {
-                Item::Primitive(p) => cx.primitive(p, input.warn_unused),
-                Item::Alias(a) => cx.alias(a, input.warn_unused),
-                Item::Command(c) => cx.diags.push(
-                    Diagnostic::new(
-                        codes::W0303,
-                        c.span,
-                        "this '!' command was not run, so what it makes is not checked",
-                    )
-                    .with_hint("radc never runs shell commands while checking"),
-                ),
-                Item::Comment(_) | Item::Error(_) => {}
-            }
-        }
+        cx.items(&input.syntax.items, input.warn_unused, 0);
     }
     cx.report_unused();
     cx.report_conflicting_materials();
@@ -84,9 +82,69 @@ struct Lowering<'a> {
     used: HashSet<PrimId>,
     warn_unused: Vec<bool>,
     files: &'a dyn FileLookup,
+    commands: &'a dyn CommandExpander,
 }
 
 impl Lowering<'_> {
+    fn items(&mut self, items: &[Item], warn_unused: bool, depth: u32) {
+        for item in items {
+            match item {
+                Item::Primitive(p) => self.primitive(p, warn_unused),
+                Item::Alias(a) => self.alias(a, warn_unused),
+                Item::Command(c) => self.command(c, warn_unused, depth),
+                Item::Comment(_) | Item::Error(_) => {}
+            }
+        }
+    }
+
+    /// Expands a `!` line and lowers its output in place, as Radiance reads a
+    /// command's output where the command stands. Diagnostics inside the output get a
+    /// label pointing back at the command line.
+    fn command(&mut self, c: &Command, warn_unused: bool, depth: u32) {
+        if depth >= MAX_DEPTH {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0307,
+                    c.span,
+                    format!("commands nest more than {MAX_DEPTH} deep"),
+                )
+                .with_hint("a file probably includes itself through '!xform'"),
+            );
+            return;
+        }
+        match self.commands.expand(&c.text, c.span.file, depth + 1) {
+            Expansion::Text { file, text } => {
+                let (syntax, mut diags) = super::parse(file, &text);
+                let first = self.diags.len();
+                self.diags.append(&mut diags);
+                self.items(&syntax.items, warn_unused, depth + 1);
+                for d in &mut self.diags[first..] {
+                    if d.span.file == file {
+                        d.labels.push(crate::diagnostic::Label {
+                            span: c.span,
+                            message: "in the output of this command".into(),
+                        });
+                    }
+                }
+            }
+            Expansion::NotExpanded { reason } => self.diags.push(
+                Diagnostic::new(
+                    codes::W0303,
+                    c.span,
+                    "this '!' command was not run, so what it makes is not checked",
+                )
+                .with_hint(reason),
+            ),
+            Expansion::Failed { message, hint } => {
+                let mut d = Diagnostic::new(codes::E0307, c.span, message);
+                if let Some(h) = hint {
+                    d = d.with_hint(h);
+                }
+                self.diags.push(d);
+            }
+        }
+    }
+
     fn push(&mut self, prim: Prim, warn_unused: bool) -> PrimId {
         let id = PrimId(self.scene.prims.len() as u32);
         self.scene.prims.push(prim);

@@ -1,12 +1,14 @@
 //! Scene files (`.rad`, `.mat`): lexing, parsing, lowering to the typed IR and checks.
 
+pub mod command;
 pub mod ir;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
 pub mod syntax;
 
-pub use lower::{AssumeFilesExist, FileLookup, LowerInput, lower};
+pub use command::{CommandExpander, Expansion, NoCommands};
+pub use lower::{AssumeFilesExist, FileLookup, LowerInput, lower, lower_with};
 pub use parser::parse;
 
 use crate::diagnostic::Diagnostic;
