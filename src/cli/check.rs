@@ -16,7 +16,8 @@ use radc_lang::{Diagnostic, FileId, Severity};
 use super::USAGE_ERROR;
 use super::report::{self, Format, Sources};
 
-const USAGE: &str = "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
+const USAGE: &str =
+    "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
 
 struct Options {
     format: Format,
@@ -90,7 +91,10 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
-    let errors = diags.iter().filter(|d| d.severity == Severity::Error).count();
+    let errors = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
     let warnings = diags.len() - errors;
     if opts.format == Format::Human && !opts.quiet {
         println!(
@@ -148,7 +152,7 @@ fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnos
         let (syntax, syntax_diags) = scene::parse(id, &text);
         found.extend(syntax_diags);
         diags.extend(found);
-        let warn_unused = !path.extension().is_some_and(|x| x == "mat");
+        let warn_unused = path.extension().is_none_or(|x| x != "mat");
         dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
         parsed.push((id, syntax, warn_unused));
     }

@@ -15,7 +15,10 @@ pub enum Expansion {
     NotExpanded { reason: String },
     /// The command was understood but failed (bad generator arguments, a missing
     /// input file, an include cycle): an error.
-    Failed { message: String, hint: Option<String> },
+    Failed {
+        message: String,
+        hint: Option<String>,
+    },
 }
 
 pub trait CommandExpander {

@@ -207,22 +207,29 @@ impl Lowering<'_> {
                 )
                 .with_hint("'void' and 'inherit' are reserved words; choose another name"),
             );
+            self.used.insert(id);
             return;
         }
-        if let Some(&old) = self.modifiers.get(&name.text) {
-            self.redefinition(old, id, name);
+        if let Some(&old) = self.modifiers.get(&name.text)
+            && self.redefinition(old, id, name)
+        {
+            // Radiance keeps binding the name to the first of identical definitions
+            // (`insertobject` in modobject.c); the copy is harmless, not unused.
+            self.used.insert(id);
+            return;
         }
         self.modifiers.insert(name.text.clone(), id);
     }
 
     /// Radiance silently keeps an identical redefinition; a different one rebinds the
     /// name for later uses only, which is worth a warning.
-    fn redefinition(&mut self, old: PrimId, new: PrimId, name: &Word) {
+    /// Returns whether the new definition is identical to the old one.
+    fn redefinition(&mut self, old: PrimId, new: PrimId, name: &Word) -> bool {
         let (Some(a), Some(b)) = (self.scene.get(old), self.scene.get(new)) else {
-            return;
+            return false;
         };
         if a.kind == b.kind && a.schema.name == b.schema.name && a.modifier == b.modifier {
-            return;
+            return true;
         }
         let old_span = a.span;
         self.diags.push(
@@ -234,6 +241,7 @@ impl Lowering<'_> {
             .with_label(old_span, "earlier definition")
             .with_hint("primitives above this line keep using the earlier definition"),
         );
+        false
     }
 
     fn resolve_modifier(&mut self, word: &Word, schema: &PrimitiveType) -> ModRef {
@@ -320,6 +328,7 @@ impl Lowering<'_> {
                 reals: Vec::new(),
             },
         };
+        let failed = target.is_none();
         let prim = Prim {
             name: a.name.text.clone(),
             name_span: a.name.span,
@@ -330,7 +339,8 @@ impl Lowering<'_> {
             kind,
             span: a.span,
         };
-        self.define(prim, &a.name, warn_unused);
+        // A broken alias was reported already; don't also call it unused.
+        self.define(prim, &a.name, warn_unused && !failed);
     }
 
     fn bad_alias_target(&mut self, a: &Alias) {
@@ -352,7 +362,10 @@ impl Lowering<'_> {
         let mut d = Diagnostic::new(
             codes::E0303,
             a.target.span,
-            format!("alias '{}' refers to '{name}', which is not defined before it", a.name.text),
+            format!(
+                "alias '{}' refers to '{name}', which is not defined before it",
+                a.name.text
+            ),
         );
         if let Some(s) = suggest(name, self.modifiers.keys().map(String::as_str)) {
             d = d.with_hint(format!("did you mean '{s}'?"));
@@ -364,7 +377,12 @@ impl Lowering<'_> {
     fn check_counts(&mut self, p: &Primitive, schema: &PrimitiveType) -> bool {
         let mut ok = true;
         for (what, list, n, span) in [
-            ("string", schema.strings, p.strings.len(), p.strings.count_span),
+            (
+                "string",
+                schema.strings,
+                p.strings.len(),
+                p.strings.count_span,
+            ),
             ("real", schema.reals, p.reals.len(), p.reals.count_span),
         ] {
             let n = u32::try_from(n).unwrap_or(u32::MAX);
@@ -380,10 +398,17 @@ impl Lowering<'_> {
                         "{} takes {} {what} argument{}, found {n}",
                         schema.name,
                         list.count.describe(),
-                        if list.count == schema::Count::Exactly(1) { "" } else { "s" },
+                        if list.count == schema::Count::Exactly(1) {
+                            ""
+                        } else {
+                            "s"
+                        },
                     ),
                 )
-                .with_label(p.kind.span, format!("{} {}", schema.category.as_str(), schema.name))
+                .with_label(
+                    p.kind.span,
+                    format!("{} {}", schema.category.as_str(), schema.name),
+                )
                 .with_hint(layout_hint(schema.name, what, &list)),
             );
         }
@@ -393,7 +418,12 @@ impl Lowering<'_> {
     /// Hard limits (errors) and plausible ranges (warnings) of real arguments. Surface
     /// geometry is judged in `lower_kind`, where Radiance's own rules are known.
     fn check_values(&mut self, p: &Primitive, schema: &PrimitiveType) {
-        let geometry = schema.category == Category::Surface;
+        // Radii, axes and vertices are judged by Radiance's own geometry rules in
+        // `lower_kind` (a negative radius flips the surface rather than failing).
+        let geometry = matches!(
+            schema.name,
+            "sphere" | "bubble" | "cone" | "cup" | "cylinder" | "tube" | "ring" | "polygon"
+        );
         for (i, r) in p.reals.items.iter().enumerate() {
             let Some((arg, _)) = schema.reals.arg_at(i) else {
                 continue;
@@ -402,7 +432,10 @@ impl Lowering<'_> {
                 self.diags.push(Diagnostic::new(
                     codes::E0203,
                     r.span,
-                    format!("{} of {} '{}' overflows to infinity", arg.name, schema.name, p.name.text),
+                    format!(
+                        "{} of {} '{}' overflows to infinity",
+                        arg.name, schema.name, p.name.text
+                    ),
                 ));
             } else if !geometry && !arg.valid.contains(r.value) {
                 self.diags.push(
@@ -420,7 +453,7 @@ impl Lowering<'_> {
                     )
                     .with_hint(format!("{}: {}", arg.name, arg.meaning)),
                 );
-            } else if !arg.plausible.contains(r.value) {
+            } else if !geometry && !arg.plausible.contains(r.value) {
                 self.diags.push(
                     Diagnostic::new(
                         codes::W0201,
@@ -456,15 +489,11 @@ impl Lowering<'_> {
             }
             if !self.files.exists(&w.text, kind, w.span.file) {
                 self.diags.push(
-                    Diagnostic::new(
-                        codes::E0305,
-                        w.span,
-                        format!("file '{}' not found", w.text),
-                    )
-                    .with_hint(
-                        "radc looks in the scene's folder, then each folder of RAYPATH \
+                    Diagnostic::new(codes::E0305, w.span, format!("file '{}' not found", w.text))
+                        .with_hint(
+                            "radc looks in the scene's folder, then each folder of RAYPATH \
                          (Radiance's library is found there when RAYPATH is set)",
-                    ),
+                        ),
                 );
             }
         }
@@ -597,13 +626,20 @@ impl Lowering<'_> {
                 self.check_radius(p, r[3], 3);
                 let (center, radius) = (v3(0), r[3]);
                 if (schema.name == "sphere") == (radius >= 0.0) {
-                    PrimKind::Sphere { center, radius: radius.abs() }
+                    PrimKind::Sphere {
+                        center,
+                        radius: radius.abs(),
+                    }
                 } else {
-                    PrimKind::Bubble { center, radius: radius.abs() }
+                    PrimKind::Bubble {
+                        center,
+                        radius: radius.abs(),
+                    }
                 }
             }
             "polygon" => {
-                let vertices: Vec<Vec3> = values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+                let vertices: Vec<Vec3> =
+                    values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
                 self.check_polygon(p, &vertices);
                 PrimKind::Polygon { vertices }
             }
@@ -612,9 +648,19 @@ impl Lowering<'_> {
                 self.check_axis(p, p0, p1);
                 self.check_cone_radii(p, r0, r1);
                 if (schema.name == "cone") == (r0 >= 0.0 && r1 >= 0.0) {
-                    PrimKind::Cone { p0, p1, r0: r0.abs(), r1: r1.abs() }
+                    PrimKind::Cone {
+                        p0,
+                        p1,
+                        r0: r0.abs(),
+                        r1: r1.abs(),
+                    }
                 } else {
-                    PrimKind::Cup { p0, p1, r0: r0.abs(), r1: r1.abs() }
+                    PrimKind::Cup {
+                        p0,
+                        p1,
+                        r0: r0.abs(),
+                        r1: r1.abs(),
+                    }
                 }
             }
             "cylinder" | "tube" => {
@@ -622,18 +668,35 @@ impl Lowering<'_> {
                 self.check_axis(p, p0, p1);
                 self.check_radius(p, radius, 6);
                 if (schema.name == "cylinder") == (radius >= 0.0) {
-                    PrimKind::Cylinder { p0, p1, radius: radius.abs() }
+                    PrimKind::Cylinder {
+                        p0,
+                        p1,
+                        radius: radius.abs(),
+                    }
                 } else {
-                    PrimKind::Tube { p0, p1, radius: radius.abs() }
+                    PrimKind::Tube {
+                        p0,
+                        p1,
+                        radius: radius.abs(),
+                    }
                 }
             }
             "ring" => {
                 let (center, normal, r0, r1) = (v3(0), v3(3), r[6], r[7]);
                 if norm(normal) == 0.0 {
-                    self.degenerate(p, real_span(p, 3).to(real_span(p, 5)), "its normal is the zero vector");
+                    self.degenerate(
+                        p,
+                        real_span(p, 3).to(real_span(p, 5)),
+                        "its normal is the zero vector",
+                    );
                 }
                 self.check_ring_radii(p, r0, r1);
-                PrimKind::Ring { center, normal, r0: r0.min(r1), r1: r0.max(r1) }
+                PrimKind::Ring {
+                    center,
+                    normal,
+                    r0: r0.min(r1),
+                    r1: r0.max(r1),
+                }
             }
             "instance" => PrimKind::Instance {
                 octree: first_string().unwrap_or_default(),
@@ -644,12 +707,33 @@ impl Lowering<'_> {
                 transform: s.iter().skip(1).cloned().collect(),
             },
             "light" => PrimKind::Light { color: rgb(0) },
-            "illum" => PrimKind::Illum { alternate: first_string(), color: rgb(0) },
-            "glow" => PrimKind::Glow { color: rgb(0), max_radius: r[3] },
-            "spotlight" => PrimKind::Spotlight { color: rgb(0), angle: r[3], direction: v3(4) },
-            "mirror" => PrimKind::Mirror { alternate: first_string(), color: rgb(0) },
-            "plastic" => PrimKind::Plastic { color: rgb(0), spec: r[3], rough: r[4] },
-            "metal" => PrimKind::Metal { color: rgb(0), spec: r[3], rough: r[4] },
+            "illum" => PrimKind::Illum {
+                alternate: first_string(),
+                color: rgb(0),
+            },
+            "glow" => PrimKind::Glow {
+                color: rgb(0),
+                max_radius: r[3],
+            },
+            "spotlight" => PrimKind::Spotlight {
+                color: rgb(0),
+                angle: r[3],
+                direction: v3(4),
+            },
+            "mirror" => PrimKind::Mirror {
+                alternate: first_string(),
+                color: rgb(0),
+            },
+            "plastic" => PrimKind::Plastic {
+                color: rgb(0),
+                spec: r[3],
+                rough: r[4],
+            },
+            "metal" => PrimKind::Metal {
+                color: rgb(0),
+                spec: r[3],
+                rough: r[4],
+            },
             "trans" => PrimKind::Trans {
                 color: rgb(0),
                 spec: r[3],
@@ -662,8 +746,17 @@ impl Lowering<'_> {
                 // Radiance's default index of refraction for glass.
                 index: values.get(3).copied().unwrap_or(1.52),
             },
-            "dielectric" => PrimKind::Dielectric { transmission: rgb(0), index: r[3], hartmann: r[4] },
-            "interface" => PrimKind::Interface { t1: rgb(0), n1: r[3], t2: rgb(4), n2: r[7] },
+            "dielectric" => PrimKind::Dielectric {
+                transmission: rgb(0),
+                index: r[3],
+                hartmann: r[4],
+            },
+            "interface" => PrimKind::Interface {
+                t1: rgb(0),
+                n1: r[3],
+                t2: rgb(4),
+                n2: r[7],
+            },
             "antimatter" => PrimKind::Antimatter { modifiers: s },
             _ => other(p),
         }
@@ -733,7 +826,10 @@ impl Lowering<'_> {
             self.diags.push(Diagnostic::new(
                 codes::W0202,
                 span,
-                format!("negative radii: Radiance reads this {} inside out", p.kind.text),
+                format!(
+                    "negative radii: Radiance reads this {} inside out",
+                    p.kind.text
+                ),
             ));
         }
     }
@@ -759,7 +855,10 @@ impl Lowering<'_> {
                 Diagnostic::new(
                     codes::W0204,
                     span,
-                    format!("polygon '{}' has zero area (its vertices are collinear or coincide)", p.name.text),
+                    format!(
+                        "polygon '{}' has zero area (its vertices are collinear or coincide)",
+                        p.name.text
+                    ),
                 )
                 .with_hint("Radiance drops it with a warning"),
             );
@@ -782,7 +881,11 @@ impl Lowering<'_> {
                 Diagnostic::new(
                     codes::W0203,
                     s,
-                    format!("vertex {} of polygon '{}' is out of the polygon's plane", i + 1, p.name.text),
+                    format!(
+                        "vertex {} of polygon '{}' is out of the polygon's plane",
+                        i + 1,
+                        p.name.text
+                    ),
                 )
                 .with_hint("split the polygon into planar pieces (triangles are always planar)"),
             );
@@ -863,4 +966,185 @@ fn real_span(p: &Primitive, i: usize) -> Span {
         .get(i)
         .map(|r| r.span)
         .unwrap_or(p.reals.count_span)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::check_text;
+
+    fn check(text: &str) -> (Scene, Vec<&'static str>) {
+        let (scene, diags) = check_text(FileId(0), text, &AssumeFilesExist, true);
+        (scene, diags.iter().map(|d| d.code.id).collect())
+    }
+
+    const PAINT: &str = "void plastic paint 0 0 5 .5 .5 .5 0 0\n";
+
+    #[test]
+    fn a_modifier_binds_to_the_most_recent_earlier_definition() {
+        let text = format!(
+            "{PAINT}paint sphere a 0 0 4 0 0 0 1\n\
+             void metal paint 0 0 5 .5 .5 .5 .9 0\npaint sphere b 0 0 4 0 0 0 1\n"
+        );
+        let (scene, codes) = check(&text);
+        assert_eq!(codes, vec!["W0302"]);
+        let kind_of_modifier = |name: &str| {
+            let p = scene.prims.iter().find(|p| p.name == name).unwrap();
+            let ModRef::Prim(m) = p.modifier else {
+                panic!()
+            };
+            scene.get(m).unwrap().schema.name
+        };
+        assert_eq!(kind_of_modifier("a"), "plastic");
+        assert_eq!(kind_of_modifier("b"), "metal");
+    }
+
+    #[test]
+    fn identical_redefinitions_are_silent() {
+        let (_, codes) = check(&format!("{PAINT}{PAINT}paint sphere a 0 0 4 0 0 0 1\n"));
+        assert!(codes.is_empty(), "{codes:?}");
+    }
+
+    #[test]
+    fn aliases_resolve_and_inherit() {
+        let text = format!(
+            "{PAINT}inherit alias coat paint\nvoid alias coat2 coat\n\
+             coat sphere a 0 0 4 0 0 0 1\ncoat2 sphere b 0 0 4 0 0 0 1\n"
+        );
+        let (scene, codes) = check(&text);
+        assert!(codes.is_empty(), "{codes:?}");
+        let coat = scene.prims.iter().find(|p| p.name == "coat").unwrap();
+        assert!(matches!(coat.kind, PrimKind::Alias { .. }));
+        assert_eq!(coat.modifier, ModRef::Inherit);
+    }
+
+    #[test]
+    fn reference_errors() {
+        assert_eq!(check("void alias a nothere\n").1, vec!["E0303"]);
+        let surface = format!("{PAINT}paint sphere s 0 0 4 0 0 0 1\n");
+        assert_eq!(
+            check(&format!("{surface}void alias a s\n")).1,
+            vec!["E0304"]
+        );
+        assert_eq!(
+            check(&format!("{surface}s sphere t 0 0 4 0 0 0 1\n")).1,
+            vec!["E0302"]
+        );
+        assert_eq!(
+            check(&format!("{PAINT}inherit sphere t 0 0 4 0 0 0 1\n")).1,
+            vec!["E0206", "W0301"]
+        );
+        assert_eq!(
+            check("void plastic void 0 0 5 .5 .5 .5 0 0\n").1,
+            vec!["E0204"]
+        );
+        // One report for an undefined name, however often it is used.
+        assert_eq!(
+            check("m sphere a 0 0 4 0 0 0 1\nm sphere b 0 0 4 0 0 0 1\n").1,
+            vec!["E0301"]
+        );
+    }
+
+    #[test]
+    fn a_material_modified_by_a_material_conflicts() {
+        let text =
+            format!("{PAINT}paint plastic p2 0 0 5 .5 .5 .5 0 0\np2 sphere s 0 0 4 0 0 0 1\n");
+        assert_eq!(check(&text).1, vec!["E0302"]);
+    }
+
+    #[test]
+    fn counts_values_and_geometry() {
+        assert_eq!(
+            check("void plastic m 0 0 4 .5 .5 .5 0\nm sphere s 0 0 4 0 0 0 1\n").1,
+            vec!["E0202"]
+        );
+        assert_eq!(
+            check("void plastic m 0 0 5 1.5 .5 .5 0 0\nm sphere s 0 0 4 0 0 0 1\n").1,
+            vec!["W0201"]
+        );
+        let (scene, codes) = check(&format!("{PAINT}paint sphere s 0 0 4 0 0 0 -1\n"));
+        assert_eq!(codes, vec!["W0202"]);
+        assert!(matches!(scene.prims[1].kind, PrimKind::Bubble { radius, .. } if radius == 1.0));
+        assert_eq!(
+            check(&format!("{PAINT}paint sphere s 0 0 4 0 0 0 0\n")).1,
+            vec!["W0206"]
+        );
+        assert_eq!(
+            check(&format!("{PAINT}paint cone c 0 0 8 0 0 0 0 0 0 1 .5\n")).1,
+            vec!["W0206"]
+        );
+        assert_eq!(
+            check(&format!("{PAINT}paint polygon p 0 0 9 0 0 0 1 1 1 2 2 2\n")).1,
+            vec!["W0204"]
+        );
+        assert_eq!(
+            check(&format!(
+                "{PAINT}paint polygon p 0 0 12 0 0 0 1 0 0 1 1 0 0 1 1\n"
+            ))
+            .1,
+            vec!["W0203"]
+        );
+    }
+
+    #[test]
+    fn unused_modifiers_are_warned_and_reachability_skips_them() {
+        let text =
+            format!("{PAINT}void plastic spare 0 0 5 .5 .5 .5 0 0\npaint sphere s 0 0 4 0 0 0 1\n");
+        let (scene, codes) = check(&text);
+        assert_eq!(codes, vec!["W0301"]);
+        assert_eq!(scene.reachable(), vec![true, false, true]);
+    }
+
+    /// Expands `!gen NAME` into a sphere named NAME using the material `paint`, and
+    /// `!loop` into itself.
+    struct FakeGenerators;
+
+    impl CommandExpander for FakeGenerators {
+        fn expand(&self, command: &str, _: FileId, depth: u32) -> Expansion {
+            let file = FileId(depth);
+            match command.split_whitespace().collect::<Vec<_>>().as_slice() {
+                ["gen", name] => Expansion::Text {
+                    file,
+                    text: format!("paint sphere {name} 0 0 4 0 0 0 1\n"),
+                },
+                ["genbad"] => Expansion::Text {
+                    file,
+                    text: "undefined sphere x 0 0 4 0 0 0 1\n".into(),
+                },
+                ["loop"] => Expansion::Text {
+                    file,
+                    text: "!loop\n".into(),
+                },
+                _ => Expansion::NotExpanded {
+                    reason: "not a generator".into(),
+                },
+            }
+        }
+    }
+
+    fn check_with_commands(text: &str) -> (Scene, Vec<Diagnostic>) {
+        let (syntax, mut diags) = crate::scene::parse(FileId(0), text);
+        let input = LowerInput {
+            file: FileId(0),
+            syntax: &syntax,
+            warn_unused: true,
+        };
+        let (scene, more) = lower_with(&[input], &AssumeFilesExist, &FakeGenerators);
+        diags.extend(more);
+        (scene, diags)
+    }
+
+    #[test]
+    fn commands_expand_in_place_and_errors_point_back() {
+        let (scene, diags) = check_with_commands(&format!("{PAINT}!gen ball\n!ls -l\n!genbad\n"));
+        assert!(scene.prims.iter().any(|p| p.name == "ball"));
+        let codes: Vec<_> = diags.iter().map(|d| d.code.id).collect();
+        assert_eq!(codes, vec!["W0303", "E0301"]);
+        assert_eq!(diags[1].labels[0].message, "in the output of this command");
+        let (_, diags) = check_with_commands("!loop\n");
+        assert_eq!(
+            diags.iter().map(|d| d.code.id).collect::<Vec<_>>(),
+            vec!["E0307"]
+        );
+    }
 }
