@@ -85,15 +85,10 @@ const fn functional(fixed: &'static [Arg]) -> ArgList {
 }
 
 /// The string list of a data type: `fixed` (ending with the function file), then one
-/// coordinate per dimension of the data, then an optional transform. `min_coords` is
-/// the fewest coordinates a valid data file allows.
-const fn with_coords(fixed: &'static [Arg], min_coords: u32) -> ArgList {
-    repeat(
-        Count::AtLeast(fixed.len() as u32 + min_coords),
-        fixed,
-        COORDS,
-    )
-    .with_transform()
+/// coordinate per dimension of the data (at least one: specdata's data needs two
+/// dimensions, the last being wavelength), then an optional transform.
+const fn with_coords(fixed: &'static [Arg], coords: &'static [Arg]) -> ArgList {
+    repeat(Count::AtLeast(fixed.len() as u32 + 1), fixed, coords).with_transform()
 }
 
 const FUNCFILE: Arg = file(
@@ -104,6 +99,13 @@ const FUNCFILE: Arg = file(
 const COORDS: &[Arg] = &[expr(
     "x",
     "coordinate index into the data, one per dimension (a function of the ray)",
+)];
+/// plasdata's coordinates are function names that `m_brdf.c` calls with the light
+/// direction and solid angle, not expressions of the ray.
+const BRDF_COORDS: &[Arg] = &[expr(
+    "x",
+    "name of a function of the light direction (x, y, z, omega) giving the coordinate \
+     in one dimension of the data",
 )];
 const A: Arg = any(
     "A",
@@ -210,12 +212,13 @@ const BRDF_DATA_STRINGS: ArgList = with_coords(
     &[
         expr(
             "func",
-            "function of the interpolated value and the light direction giving the reflectance",
+            "name of a function of the interpolated value and the light direction \
+             (x, y, z, omega) giving the distribution",
         ),
         file("datafile", "data file of the distribution", FileKind::Data),
         FUNCFILE,
     ],
-    1,
+    BRDF_COORDS,
 );
 const MOTION: [Arg; 9] = [
     any("Ox", "x of the upper left corner of the text block"),
@@ -891,13 +894,13 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 real(
                     "u-power",
                     "specular power along u (>= 0; 10 rough .. 10000 near mirror)",
-                    Bounds::NON_NEGATIVE,
+                    Bounds::ANY,
                     Bounds::NON_NEGATIVE,
                 ),
                 real(
                     "v-power",
                     "specular power across u (>= 0; 10 rough .. 10000 near mirror)",
-                    Bounds::NON_NEGATIVE,
+                    Bounds::ANY,
                     Bounds::NON_NEGATIVE,
                 ),
             ],
@@ -1018,8 +1021,8 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
         name: "glass",
         category: Category::Material,
         summary: "A thin pane of glass, modelled by one surface",
-        doc: "Optimised for thin panes: one surface stands for both faces, internal \
-              reflections are accounted for, and one reflected and one transmitted ray are \
+        doc: "Optimised for thin panes: one surface stands for both faces, so no ray \
+              bounces inside the pane, and one reflected and one transmitted ray are \
               produced. The arguments are transmissivity at normal incidence (light not \
               absorbed in one pass: 0.96 for the common 88% transmittance glass), and an \
               optional index of refraction (default 1.52). A pattern changes the \
@@ -1258,7 +1261,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 file("zdfname", "data file of z perturbations", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1307,7 +1310,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 file("bdatafile", "data file for blue", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1326,7 +1329,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 file("datafile", "data file", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1484,7 +1487,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 ),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1540,7 +1543,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 file("datafile", "data file", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
