@@ -10,7 +10,7 @@ mod editor;
 mod table;
 
 pub use docs::markdown;
-pub use editor::{ArgSide, arg_hint, hover, layout, snippet};
+pub use editor::{arg_hint, hover, layout, snippet};
 pub use table::PRIMITIVE_TYPES;
 
 /// What a primitive is for; decides what may modify what.
@@ -398,6 +398,23 @@ pub struct PrimitiveType {
     pub doc: &'static str,
     pub strings: ArgList,
     pub reals: ArgList,
+}
+
+/// Which argument list of a primitive an index refers to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ArgSide {
+    Strings,
+    Reals,
+}
+
+impl PrimitiveType {
+    /// The argument list on one side.
+    pub fn args(&self, side: ArgSide) -> &ArgList {
+        match side {
+            ArgSide::Strings => &self.strings,
+            ArgSide::Reals => &self.reals,
+        }
+    }
 }
 
 /// Whether a string argument starts an xform transform, as Radiance's `isxfopt`
