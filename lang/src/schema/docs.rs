@@ -2,8 +2,8 @@
 //! `docs/primitives.md` at the repository root is this output; a test keeps them equal
 //! (`RADC_BLESS=1 cargo test -p radc-lang` rewrites the file).
 
-use super::editor::{ArgSide, layout};
-use super::{ArgList, Category, PRIMITIVE_TYPES, PrimitiveType};
+use super::editor::layout;
+use super::{ArgList, ArgSide, Category, PRIMITIVE_TYPES, PrimitiveType};
 
 const CATEGORIES: [(Category, &str); 7] = [
     (Category::Surface, "Surfaces"),

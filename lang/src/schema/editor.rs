@@ -2,24 +2,7 @@
 //! argument hints. Everything here reads only the schema table, so the language server,
 //! the CLI's explanations and the generated reference say the same thing.
 
-use super::{ArgList, Category, PrimitiveType};
-
-/// Which argument list of a primitive an index refers to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ArgSide {
-    Strings,
-    Reals,
-}
-
-impl PrimitiveType {
-    /// The argument list on one side.
-    pub fn args(&self, side: ArgSide) -> &ArgList {
-        match side {
-            ArgSide::Strings => &self.strings,
-            ArgSide::Reals => &self.reals,
-        }
-    }
-}
+use super::{ArgList, ArgSide, Category, PrimitiveType};
 
 /// A completion snippet (LSP/VS Code syntax) laying out the fewest arguments the type
 /// accepts: `${1:mod} plastic ${2:name}\n0\n0\n5 ${3:red} ${4:green} ...`.

@@ -10,7 +10,7 @@ mod editor;
 mod table;
 
 pub use docs::markdown;
-pub use editor::{ArgSide, arg_hint, hover, layout, snippet};
+pub use editor::{arg_hint, hover, layout, snippet};
 pub use table::PRIMITIVE_TYPES;
 
 /// What a primitive is for; decides what may modify what.
@@ -138,8 +138,13 @@ pub enum StringKind {
     /// The name of an earlier modifier (mixture foreground/background, illum's alternate
     /// material, antimatter's list), or `void`; WGMDfunc's also accept `inherit`.
     Modifier,
-    /// A calcomp variable or function name, or an expression.
+    /// A calcomp expression (a variable name is one), evaluated per ray in the
+    /// function file's context: the strings `getfunc` parses (`src/rt/preload.c` masks).
     Function,
+    /// The name of a calcomp function that Radiance calls with arguments (plasfunc's
+    /// `refl`, colordata's `rfunc`, ...): it must be a name, not an expression. The
+    /// argument's meaning says what it is called with.
+    FunctionName,
     /// A file name searched in the scene's folder, then along RAYPATH.
     File(FileKind),
     /// A word of the xform-style transform (`-t x y z -rz 30 ...`) that may end a string
@@ -154,6 +159,7 @@ impl StringKind {
             StringKind::Word => "word",
             StringKind::Modifier => "modifier",
             StringKind::Function => "expression",
+            StringKind::FunctionName => "function name",
             StringKind::Transform => "transform",
             StringKind::File(kind) => match kind {
                 FileKind::Cal => "file (cal)",
@@ -392,6 +398,23 @@ pub struct PrimitiveType {
     pub doc: &'static str,
     pub strings: ArgList,
     pub reals: ArgList,
+}
+
+/// Which argument list of a primitive an index refers to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ArgSide {
+    Strings,
+    Reals,
+}
+
+impl PrimitiveType {
+    /// The argument list on one side.
+    pub fn args(&self, side: ArgSide) -> &ArgList {
+        match side {
+            ArgSide::Strings => &self.strings,
+            ArgSide::Reals => &self.reals,
+        }
+    }
 }
 
 /// Whether a string argument starts an xform transform, as Radiance's `isxfopt`

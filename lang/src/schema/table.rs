@@ -44,9 +44,16 @@ const fn string(name: &'static str, meaning: &'static str, kind: StringKind) -> 
     }
 }
 
-/// A calcomp expression (or, where the type says so, a function name).
+/// A calcomp expression: `getfunc` parses it in the function file's context.
 const fn expr(name: &'static str, meaning: &'static str) -> Arg {
     string(name, meaning, StringKind::Function)
+}
+
+/// The name of a calcomp function Radiance calls with arguments: such strings must be
+/// names, not expressions (ray.html 2.2.1; `getfunc` leaves them out of its expression
+/// mask).
+const fn func(name: &'static str, meaning: &'static str) -> Arg {
+    string(name, meaning, StringKind::FunctionName)
 }
 
 /// A file name.
@@ -85,15 +92,10 @@ const fn functional(fixed: &'static [Arg]) -> ArgList {
 }
 
 /// The string list of a data type: `fixed` (ending with the function file), then one
-/// coordinate per dimension of the data, then an optional transform. `min_coords` is
-/// the fewest coordinates a valid data file allows.
-const fn with_coords(fixed: &'static [Arg], min_coords: u32) -> ArgList {
-    repeat(
-        Count::AtLeast(fixed.len() as u32 + min_coords),
-        fixed,
-        COORDS,
-    )
-    .with_transform()
+/// coordinate per dimension of the data (at least one: specdata's data needs two
+/// dimensions, the last being wavelength), then an optional transform.
+const fn with_coords(fixed: &'static [Arg], coords: &'static [Arg]) -> ArgList {
+    repeat(Count::AtLeast(fixed.len() as u32 + 1), fixed, coords).with_transform()
 }
 
 const FUNCFILE: Arg = file(
@@ -104,6 +106,13 @@ const FUNCFILE: Arg = file(
 const COORDS: &[Arg] = &[expr(
     "x",
     "coordinate index into the data, one per dimension (a function of the ray)",
+)];
+/// plasdata's coordinates are function names that `m_brdf.c` calls with the light
+/// direction and solid angle, not expressions of the ray.
+const BRDF_COORDS: &[Arg] = &[func(
+    "x",
+    "name of a function of the light direction (x, y, z, omega) giving the coordinate \
+     in one dimension of the data",
 )];
 const A: Arg = any(
     "A",
@@ -208,14 +217,15 @@ const BRTD_REALS: ArgList = repeat(
 );
 const BRDF_DATA_STRINGS: ArgList = with_coords(
     &[
-        expr(
+        func(
             "func",
-            "function of the interpolated value and the light direction giving the reflectance",
+            "name of a function of the interpolated value and the light direction \
+             (x, y, z, omega) giving the distribution",
         ),
         file("datafile", "data file of the distribution", FileKind::Data),
         FUNCFILE,
     ],
-    1,
+    BRDF_COORDS,
 );
 const MOTION: [Arg; 9] = [
     any("Ox", "x of the upper left corner of the text block"),
@@ -891,13 +901,13 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 real(
                     "u-power",
                     "specular power along u (>= 0; 10 rough .. 10000 near mirror)",
-                    Bounds::NON_NEGATIVE,
+                    Bounds::ANY,
                     Bounds::NON_NEGATIVE,
                 ),
                 real(
                     "v-power",
                     "specular power across u (>= 0; 10 rough .. 10000 near mirror)",
-                    Bounds::NON_NEGATIVE,
+                    Bounds::ANY,
                     Bounds::NON_NEGATIVE,
                 ),
             ],
@@ -1018,8 +1028,8 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
         name: "glass",
         category: Category::Material,
         summary: "A thin pane of glass, modelled by one surface",
-        doc: "Optimised for thin panes: one surface stands for both faces, internal \
-              reflections are accounted for, and one reflected and one transmitted ray are \
+        doc: "Optimised for thin panes: one surface stands for both faces, so no ray \
+              bounces inside the pane, and one reflected and one transmitted ray are \
               produced. The arguments are transmissivity at normal incidence (light not \
               absorbed in one pass: 0.96 for the common 88% transmittance glass), and an \
               optional index of refraction (default 1.52). A pattern changes the \
@@ -1049,7 +1059,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               projected hemisphere. Only direct light contributes to the specular part. The \
               reals after the first four are passed to the function file.",
         strings: functional(&[
-            expr(
+            func(
                 "refl",
                 "name of the specular distribution function of (x, y, z, omega)",
             ),
@@ -1064,7 +1074,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
         doc: "The same as plasfunc, with the specular component also tinted by the \
               material colour.",
         strings: functional(&[
-            expr(
+            func(
                 "refl",
                 "name of the specular distribution function of (x, y, z, omega)",
             ),
@@ -1079,7 +1089,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
         doc: "Like plasfunc with transmission: one function gives both the reflected and the \
               transmitted distribution, normalised to 1 over each projected hemisphere.",
         strings: functional(&[
-            expr(
+            func(
                 "brtd",
                 "name of the distribution function of (x, y, z, omega)",
             ),
@@ -1116,15 +1126,15 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 "btrns",
                 "blue straight transmission coefficient, an expression",
             ),
-            expr(
+            func(
                 "rbrtd",
                 "red directional-diffuse function name, or 0 for none",
             ),
-            expr(
+            func(
                 "gbrtd",
                 "green directional-diffuse function name, or 0 for none",
             ),
-            expr(
+            func(
                 "bbrtd",
                 "blue directional-diffuse function name, or 0 for none",
             ),
@@ -1241,15 +1251,15 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               files, each passed through a function of the three interpolated values.",
         strings: with_coords(
             &[
-                expr(
+                func(
                     "xfunc",
                     "function of the three data values giving the x perturbation",
                 ),
-                expr(
+                func(
                     "yfunc",
                     "function of the three data values giving the y perturbation",
                 ),
-                expr(
+                func(
                     "zfunc",
                     "function of the three data values giving the z perturbation",
                 ),
@@ -1258,7 +1268,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 file("zdfname", "data file of z perturbations", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1296,18 +1306,18 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               multiplier.",
         strings: with_coords(
             &[
-                expr("rfunc", "function giving the red multiplier from the data"),
-                expr(
+                func("rfunc", "function giving the red multiplier from the data"),
+                func(
                     "gfunc",
                     "function giving the green multiplier from the data",
                 ),
-                expr("bfunc", "function giving the blue multiplier from the data"),
+                func("bfunc", "function giving the blue multiplier from the data"),
                 file("rdatafile", "data file for red", FileKind::Data),
                 file("gdatafile", "data file for green", FileKind::Data),
                 file("bdatafile", "data file for blue", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1319,14 +1329,14 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               output distributions from photometric data.",
         strings: with_coords(
             &[
-                expr(
+                func(
                     "func",
                     "function of the interpolated value giving the multiplier",
                 ),
                 file("datafile", "data file", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1338,15 +1348,15 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               side and 0..aspect along the longer one; the u and v expressions pick the \
               point, and the functions give each component from the pixel's colour.",
         strings: functional(&[
-            expr(
+            func(
                 "rfunc",
                 "function of the pixel's red, green, blue giving the red multiplier",
             ),
-            expr(
+            func(
                 "gfunc",
                 "function of the pixel's colour giving the green multiplier",
             ),
-            expr(
+            func(
                 "bfunc",
                 "function of the pixel's colour giving the blue multiplier",
             ),
@@ -1456,7 +1466,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               a function of the wavelength in nm. Further reals are passed to the function \
               file.",
         strings: functional(&[
-            expr(
+            func(
                 "sfunc",
                 "function of the wavelength in nm giving the multiplier",
             ),
@@ -1473,7 +1483,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               function takes the interpolated value and its wavelength.",
         strings: with_coords(
             &[
-                expr(
+                func(
                     "func",
                     "function of the interpolated value and the wavelength in nm",
                 ),
@@ -1484,7 +1494,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
                 ),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1496,7 +1506,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
               common-exponent format; the function takes each component and its \
               wavelength.",
         strings: functional(&[
-            expr(
+            func(
                 "func",
                 "function of the pixel value and the wavelength in nm",
             ),
@@ -1533,14 +1543,14 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
             &[
                 FOREGROUND,
                 BACKGROUND,
-                expr(
+                func(
                     "func",
                     "function of the interpolated value giving the weight",
                 ),
                 file("datafile", "data file", FileKind::Data),
                 FUNCFILE,
             ],
-            1,
+            COORDS,
         ),
         reals: EXTRA_REALS,
     },
@@ -1553,7 +1563,7 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
         strings: functional(&[
             FOREGROUND,
             BACKGROUND,
-            expr(
+            func(
                 "func",
                 "function of the pixel's red, green, blue giving the weight",
             ),
@@ -1860,6 +1870,78 @@ mod tests {
             assert_eq!(strings(name), Count::AtLeast(s), "{name}");
         }
         assert_eq!(strings("specfile"), Count::Exactly(1));
+    }
+
+    /// Which strings are expressions, as the masks `src/rt/preload.c` hands `getfunc`:
+    /// (type, index of the function file, expression bits below it). Bits above the file
+    /// are data coordinates, expressions exactly when the type's mask covers them.
+    #[test]
+    fn expressions_follow_getfunc_masks() {
+        for (name, ff, mask, coords_are_expressions) in [
+            ("texfunc", 3, 0x7, None),
+            ("texdata", 6, 0, Some(true)),
+            ("brightfunc", 1, 0x1, None),
+            ("colorfunc", 3, 0x7, None),
+            ("brightdata", 2, 0, Some(true)),
+            ("colordata", 6, 0, Some(true)),
+            ("colorpict", 4, 0, None),
+            ("specfunc", 1, 0, None),
+            ("specdata", 2, 0, Some(true)),
+            ("specpict", 2, 0, None),
+            ("mixfunc", 3, 0x4, None),
+            ("mixdata", 4, 0, Some(true)),
+            ("mixpict", 4, 0, None),
+            ("plastic2", 3, 0x7, None),
+            ("metal2", 3, 0x7, None),
+            ("trans2", 3, 0x7, None),
+            ("ashik2", 3, 0x7, None),
+            ("WGMDfunc", 12, 0xEEE, None),
+            ("BRTDfunc", 9, 0x3f, None),
+            ("BSDF", 5, 0x1d, None),
+            ("aBSDF", 4, 0xe, None),
+            ("plasdata", 2, 0, Some(false)),
+            ("metdata", 2, 0, Some(false)),
+            ("transdata", 2, 0, Some(false)),
+            ("plasfunc", 1, 0, None),
+            ("metfunc", 1, 0, None),
+            ("transfunc", 1, 0, None),
+            ("prism1", 4, 0xf, None),
+            ("prism2", 8, 0xff, None),
+        ] {
+            let l = lookup(name).unwrap().strings;
+            assert_eq!(l.fixed[ff].kind, StringKind::File(FileKind::Cal), "{name}");
+            for (i, a) in l.fixed[..ff].iter().enumerate() {
+                let expression = mask & (1 << i) != 0;
+                assert_eq!(
+                    a.kind == StringKind::Function,
+                    expression,
+                    "{name} {}",
+                    a.name
+                );
+            }
+            match coords_are_expressions {
+                None => assert!(l.repeat.is_empty(), "{name}"),
+                Some(e) => {
+                    let kind = if e {
+                        StringKind::Function
+                    } else {
+                        StringKind::FunctionName
+                    };
+                    assert_eq!(l.repeat[0].kind, kind, "{name}");
+                }
+            }
+        }
+        // u and v of the picture types follow their function file.
+        for name in ["colorpict", "mixpict", "specpict"] {
+            let l = lookup(name).unwrap().strings;
+            let n = l.fixed.len();
+            assert!(
+                l.fixed[n - 2..]
+                    .iter()
+                    .all(|a| a.kind == StringKind::Function),
+                "{name}"
+            );
+        }
     }
 
     #[test]
