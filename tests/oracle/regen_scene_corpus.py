@@ -11,7 +11,9 @@ Writes:
   defines a sky (gensky) gets a fixed sky-dome suffix so it contains surfaces a ray can hit.
 - binary side files that hand-written scenes in `tests/data/scenes/valid/` name: an octree
   for `instance` (oconv -f), a triangle mesh for `mesh` (obj2mesh) and a 4x4 picture for the
-  `*pict` primitives (written here byte by byte: pcomb would stamp the date into it).
+  `*pict` primitives and a 2x2 hyperspectral one for `specpict` (both written here byte by
+  byte: pcomb would stamp the date into them), and a
+  constant tensor-tree BSDF (bsdf2ttree) for `BSDF`/`aBSDF`.
 
 Every output is deterministic; `--check` regenerates into memory and lists each file whose
 bytes differ from the committed one. Needs the oracle (`tests/oracle/env.sh`) on PATH.
@@ -177,6 +179,9 @@ INSTANCE_OCTREE = "instance_part.oct"
 MESH_OBJ = "mesh_tri.obj"  # committed, hand-written; mesh made from it
 MESH_FILE = "mesh_tri.rtm"
 PICTURE = "tiny.hdr"
+SPECTRAL_PICTURE = "tiny.hsr"
+BSDF_XML = "lambert.xml"  # a constant tensor-tree BSDF for BSDF/aBSDF (bsdf2ttree)
+BSDF_FUNC = "lamb(ix,iy,iz,ox,oy,oz)=.1/PI"
 
 
 def run(argv: list[str], cwd: Path) -> bytes:
@@ -226,14 +231,30 @@ def picture() -> bytes:
     return header + pixels
 
 
+def hyperspectral() -> bytes:
+    """A 2x2 flat hyperspectral picture (4 bands, one common exponent per pixel), in the
+    header layout rtrace -co+ writes."""
+    header = (
+        b"#?RADIANCE\nSOFTWARE= regen_scene_corpus.py\nNCOMP=4\n"
+        b"WAVELENGTH_SPLITS= 780 588 480 380\nFORMAT=Radiance_spectra\n\n-Y 2 +X 2\n"
+    )
+    pixels = b""
+    for k in range(4):
+        bands = [0.2 + 0.15 * ((k + b) % 4) for b in range(4)]
+        m, e = math.frexp(max(bands))
+        pixels += bytes(int(v * m * 256.0 / max(bands)) for v in bands) + bytes([e + 128])
+    return header + pixels
+
+
 def side_files() -> dict[Path, bytes]:
     """Binary files that hand-written valid scenes name."""
-    files = {VALID / PICTURE: picture()}
+    files = {VALID / PICTURE: picture(), VALID / SPECTRAL_PICTURE: hyperspectral()}
     files[VALID / INSTANCE_OCTREE] = run(["oconv", "-f", INSTANCE_SOURCE], VALID)
     with tempfile.TemporaryDirectory() as tmp:
         mesh = Path(tmp) / MESH_FILE
         run(["obj2mesh", MESH_OBJ, str(mesh)], VALID)
         files[VALID / MESH_FILE] = mesh.read_bytes()
+    files[VALID / BSDF_XML] = run(["bsdf2ttree", "-g", "2", "-e", BSDF_FUNC, "lamb"], VALID)
     return files
 
 
