@@ -29,8 +29,10 @@ library:
    - a 7x7 grid of rays inward from each of the six faces of the scene's bounding box
      (`getbbox`), which reaches instances and meshes whose contents the probe cannot see.
    A surface hidden behind a coincident one can still escape; the corpus scenes avoid that.
-   `render_ok` is rtrace's exit status (true when oconv already failed: nothing to render).
-3. `radiance_says`: the first `fatal`/`error` line (oconv's, else rtrace's), otherwise "".
+   `render_ok` is rtrace's exit status (false when oconv failed: nothing to render).
+3. `radiance_says`, for a rejected scene only: the first `fatal`/`system`/`internal`/
+   `consistency` line (oconv's, else rtrace's); when a failing
+   run printed none (calcomp errors), its first three lines joined by " / "; otherwise "".
    `warnings`: the distinct warning lines, in order, at most 8. Absolute paths of the scene
    folder and the oracle library are replaced by `.` and `$RAYPATH_LIB`.
 4. Shared-corpus scenes also get `needs_commands`: true when the file runs `!` commands or
@@ -67,7 +69,9 @@ MEMORY_LIMIT = 2 << 30
 MAX_WARNINGS = 8
 GRID = 7
 # Messages meaning Radiance could not find a file the scene names.
-MISSING_FILE = re.compile(r"cannot (open|find|load)|no such file|not found", re.IGNORECASE)
+MISSING_FILE = re.compile(r"cannot (open|find|load)|load error|no such file", re.IGNORECASE)
+# Radiance's error levels other than warnings (src/common/error.c), and our timeout.
+ERROR_LINE = re.compile(r": (fatal|system|internal|consistency) - |timed out after")
 
 
 # ---------------------------------------------------------------- running Radiance
@@ -311,7 +315,7 @@ def verdict(scene: Path, shared: bool) -> dict:
         status, err, out = run(["oconv", name], cwd, b"", OCONV_TIMEOUT)
         messages += err.splitlines()
         oconv_ok = status == 0
-        render_ok = True
+        render_ok = False  # nothing to render when oconv fails
         if oconv_ok:
             octree.write_bytes(out)
             rays = probe_rays(scene)
@@ -321,9 +325,12 @@ def verdict(scene: Path, shared: bool) -> dict:
             messages += err.splitlines()
             render_ok = status == 0
     messages = [tidy(m, scene) for m in messages if m.strip()]
-    errors = [m for m in messages if re.search(r"fatal|error|timed out", m, re.IGNORECASE)]
-    if (not oconv_ok or not render_ok) and not errors:
-        errors = messages[:1] or ["(no message; nonzero exit status)"]
+    errors = [m for m in messages if ERROR_LINE.search(m)]
+    if oconv_ok and render_ok:
+        errors = []
+    elif not errors:
+        # calcomp reports a syntax error on three lines: where, the text, a caret.
+        errors = [" / ".join(messages[:3])] if messages else ["(no message; nonzero exit)"]
     warnings: list[str] = []
     for m in messages:
         if "warning" in m and m not in warnings and len(warnings) < MAX_WARNINGS:
