@@ -29,6 +29,8 @@ library:
    - a 7x7 grid of rays inward from each of the six faces of the scene's bounding box
      (`getbbox`), which reaches instances and meshes whose contents the probe cannot see.
    A surface hidden behind a coincident one can still escape; the corpus scenes avoid that.
+   `--probe-coverage` proves the probe's reach: it breaks each modifier of each accepted
+   scene in turn (all arguments removed) and lists those whose breakage rtrace never notices.
    `render_ok` is rtrace's exit status (false when oconv failed: nothing to render).
 3. `radiance_says`, for a rejected scene only: the first `fatal`/`system`/`internal`/
    `consistency` line (oconv's, else rtrace's); when a failing
@@ -133,6 +135,26 @@ def words(text: str) -> list[str | None]:
                 i += 1
         tokens.append("".join(word))
     return tokens
+
+
+def statements(text: str) -> list[list[str]]:
+    """The word lists of each primitive of an expanded scene (alias included)."""
+    toks = [t for t in words(text) if t is not None]
+    out = []
+    i = 0
+    while i + 2 < len(toks):
+        start = i
+        i += 3
+        if toks[start + 1] == "alias":
+            i += 1
+        else:
+            try:
+                for _ in range(3):
+                    i += 1 + int(toks[i])
+            except (ValueError, IndexError):
+                break
+        out.append(toks[start:i])
+    return out
 
 
 def primitives(text: str) -> list[tuple[str, str, list[str], list[float]]]:
@@ -347,6 +369,46 @@ def verdict(scene: Path, shared: bool) -> dict:
     return entry
 
 
+# Types whose argument checks the probe must trigger: everything but geometry, alias and the
+# two types for which `0 0 0` (no arguments at all) is legal.
+UNPROBED_TYPES = {"polygon", "cone", "sphere", "ring", "cylinder", "cup", "bubble", "tube",
+                  "source", "instance", "mesh", "alias", "mist", "antimatter"}
+
+
+def quoted(word: str) -> str:
+    return f'"{word}"' if any(c.isspace() for c in word) else word
+
+
+def probe_coverage(scene: Path) -> list[str]:
+    """Proves the probe reaches every modifier of an accepted scene: strips each modifier in
+    turn of all its arguments (`0 0 0`, illegal for every probed type) and expects the probe
+    render to fail. Returns the modifiers whose breakage went unnoticed."""
+    status, _, out = run(["xform", scene.name], scene.parent, b"", OCONV_TIMEOUT)
+    if status != 0:
+        return [f"(xform failed on {scene.name})"]
+    prims = statements(out.decode("utf-8", errors="replace"))
+    unreached = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, prim in enumerate(prims):
+            if prim[1] in UNPROBED_TYPES:
+                continue
+            mutated = [p if j != k else p[:3] + ["0", "0", "0"] for j, p in enumerate(prims)]
+            copy = Path(tmp) / scene.name
+            copy.write_text("\n".join(" ".join(map(quoted, p)) for p in mutated) + "\n")
+            octree = Path(tmp) / "probe.oct"
+            status, _, oct_bytes = run(["oconv", str(copy)], scene.parent, b"", OCONV_TIMEOUT)
+            if status != 0:
+                continue  # oconv itself noticed
+            octree.write_bytes(oct_bytes)
+            rays = probe_rays(scene)
+            status, _, _ = run(
+                ["rtrace", "-h", "-ab", "0", "-ov", str(octree)], scene.parent, rays, RTRACE_TIMEOUT
+            )
+            if status == 0:
+                unreached.append(f"{prim[1]} {prim[2]}")
+    return unreached
+
+
 def scene_files() -> list[tuple[str, Path, bool]]:
     """(key, path, from the shared corpus) for every scene, sorted by key."""
     found = []
@@ -370,10 +432,29 @@ def render_json(golden: dict) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="fail if any verdict changed")
+    parser.add_argument(
+        "--probe-coverage",
+        action="store_true",
+        help="for accepted own-corpus scenes (or SCENEs), list modifiers the probe never reaches",
+    )
     parser.add_argument("scenes", nargs="*", type=Path, help="print verdicts of these only")
     args = parser.parse_args()
     if "RAYPATH" not in os.environ:
         sys.exit("source tests/oracle/env.sh first")
+    if args.probe_coverage:
+        targets = [p.resolve() for p in args.scenes] or [
+            path
+            for key, path, shared in scene_files()
+            if not shared and "/invalid/" not in key
+        ]
+        total = 0
+        for p in targets:
+            missed = probe_coverage(p)
+            total += len(missed)
+            for m in missed:
+                print(f"{p.relative_to(ROOT) if ROOT in p.parents else p}: probe never reaches {m}")
+        print(f"probe coverage: {total} modifier(s) unreached in {len(targets)} scene(s)")
+        return 1 if total else 0
     if args.scenes:
         for p in args.scenes:
             p = p.resolve()
