@@ -352,6 +352,15 @@ impl ArgList {
         (self.fixed.len()..words.len()).find(|&i| is_transform_option(words[i].as_ref()))
     }
 
+    /// Like [`ArgList::arg_at`], but knowing the strings as written, so that words of
+    /// a transform after data coordinates are described as the transform.
+    pub fn arg_in<S: AsRef<str>>(&self, i: usize, words: &[S]) -> Option<(Arg, Option<usize>)> {
+        match self.transform_start(words) {
+            Some(start) if i >= start => Some((ArgList::TRANSFORM, None)),
+            _ => self.arg_at(i),
+        }
+    }
+
     /// The name shown for position `i`: fixed names as they are, repeated groups
     /// numbered from 1 (`x1 y1 z1 x2 ..`, `src1 src2 ..`), except the extra reals `A`,
     /// numbered by position because function files read them as `A5` / `arg(5)`.

@@ -2025,6 +2025,10 @@ mod tests {
                 .transform_start(&["-t"])
                 .is_none()
         );
+        let (coord, _) = data.arg_in(3, &words).unwrap();
+        assert_eq!(coord.kind, StringKind::Function);
+        let (xf, _) = data.arg_in(6, &words).unwrap();
+        assert_eq!(xf.kind, StringKind::Transform);
     }
 
     #[test]
