@@ -12,6 +12,8 @@
 //!   within `FTINY` (1e-6) of zero contributes nothing;
 //! - outside the domain the value is extrapolated linearly for one division, then tapers off
 //!   harmonically towards zero (the weights become `1/(i-1-x)` and `-2/(i-1-x)`);
+//! - an axis whose bounds overflow single precision to the same infinity has a NaN extent,
+//!   which Radiance's optimised build takes for zero (an unevenly spaced axis);
 //! - a coordinate that is NaN or at least 2^31 divisions from the origin truncates to
 //!   `INT_MIN` on x86-64 (`cvttsd2si`), so Radiance extrapolates it from the first cell.
 
@@ -185,7 +187,9 @@ impl DataFile {
                 .filter(|&t| t <= i32::MAX as usize)
                 .ok_or_else(|| words.error_at(count.offset, DataFileErrorKind::TooManyValues))?;
             let extent = end - begin;
-            let parsed = if extent == 0.0 {
+            // The oracle's build (fast-math) compares a NaN extent (from `inf - inf`) as
+            // equal to zero, so such an axis also reads its points.
+            let parsed = if extent == 0.0 || extent.is_nan() {
                 Self::uneven_axis(&mut words, axis, n)?
             } else {
                 Axis {

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use radc_jit::datafile::DataFile;
+use radc_jit::datafile::{DataFile, DataFileErrorKind};
 
 fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -114,4 +114,68 @@ fn corpus_data_files_parse() {
             }
         }
     }
+}
+
+/// Radiance's message class for a load error. Radiance words it "unexpected EOF" whenever
+/// the file is at its end when the error is noticed, even if the last word was merely bad;
+/// radc names the actual problem, so that case is accepted as either.
+fn radiance_classes(kind: &DataFileErrorKind, text: &str) -> Vec<&'static str> {
+    let class = match kind {
+        DataFileErrorKind::UnexpectedEnd { .. } => "unexpected EOF",
+        DataFileErrorKind::BadDimensionCount(_) => "bad number of dimensions",
+        _ => "bad format",
+    };
+    let at_eof = !text.ends_with(|c: char| c.is_ascii_whitespace());
+    if at_eof && class == "bad format" {
+        vec![class, "unexpected EOF"]
+    } else {
+        vec![class]
+    }
+}
+
+/// Files Radiance accepts load here with the same value at (0.5, ...); files it rejects are
+/// rejected here too, with an error of the same kind.
+#[test]
+fn malformed_files_are_judged_as_radiance_does() {
+    let root = repo_root().join("tests/data/datafile");
+    let golden = std::fs::read_to_string(root.join("malformed.golden")).expect("golden");
+    let mut problems = Vec::new();
+    let mut count = 0;
+    for line in golden.lines().filter(|l| !l.starts_with('#')) {
+        let (file, outcome) = line.split_once(": ").expect("'file: outcome' line");
+        let bytes = std::fs::read(root.join("malformed").join(file)).expect("malformed file");
+        let text = String::from_utf8_lossy(&bytes);
+        let parsed = DataFile::parse(&text);
+        count += 1;
+        match (outcome.split_once(' '), parsed) {
+            (Some(("accepted", value)), Ok(data)) => {
+                let expected: f64 = value.parse().expect("value");
+                let actual = data.eval(&vec![0.5; data.dimensions()]);
+                if actual as f32 != expected as f32 && !(actual.is_nan() && expected.is_nan()) {
+                    problems.push(format!("{file}: rtrace gives {expected}, radc {actual}"));
+                }
+            }
+            (Some(("accepted", _)), Err(e)) => {
+                problems.push(format!("{file}: Radiance accepts it, radc says {e}"));
+            }
+            (Some(("rejected", message)), Ok(_)) => {
+                problems.push(format!(
+                    "{file}: Radiance rejects it ({message}), radc accepts it"
+                ));
+            }
+            (Some(("rejected", message)), Err(e)) => {
+                if !radiance_classes(&e.kind, &text).contains(&message) {
+                    problems.push(format!("{file}: Radiance says {message}, radc says {e}"));
+                }
+            }
+            _ => panic!("malformed.golden: bad line {line:?}"),
+        }
+    }
+    assert!(count > 0, "no malformed cases");
+    assert!(
+        problems.is_empty(),
+        "{} of {count} malformed files judged differently:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
 }
