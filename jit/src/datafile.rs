@@ -690,6 +690,15 @@ mod tests {
     }
 
     #[test]
+    fn infinite_bounds_read_points_like_the_oracle() {
+        // 1e39 overflows single precision; inf - inf is NaN, which Radiance's build takes
+        // for a zero extent (checked with rtrace: the value at 5.5 is 7.5).
+        let d = parse("1\n1e39 1e39 2\n5 6\n7 8\n");
+        assert_eq!(d.axes()[0].points.as_deref(), Some(&[5.0f32, 6.0][..]));
+        assert_eq!(d.eval(&[5.5]), 7.5);
+    }
+
+    #[test]
     fn huge_dimensions_fail_without_allocating() {
         let e = error("6 0 1 2147483647 0 1 2147483647 0 1 2 0 1 2 0 1 2 0 1 2 1");
         assert_eq!(e.kind, DataFileErrorKind::TooManyValues);
