@@ -182,7 +182,7 @@ fn unreadable_input_is_a_diagnostic_not_a_crash() {
         .map(|d| d["code"].as_str().unwrap().to_string())
         .collect();
     assert!(codes.contains(&"W0101".to_string()), "{codes:?}");
-    assert!(codes.contains(&"E0108".to_string()), "{codes:?}");
+    assert!(codes.contains(&"W0103".to_string()), "{codes:?}");
     assert!(codes.contains(&"E0305".to_string()), "{codes:?}");
 }
 

@@ -24,7 +24,6 @@ codes! {
     E0105 = "E0105" "nonzero-int-args" Error: "The integer-argument count must be 0.";
     E0106 = "E0106" "unterminated-quote" Error: "A quoted string is not closed before the end of the file.";
     E0107 = "E0107" "misplaced-comment" Error: "A '#' comment inside a primitive's arguments.";
-    E0108 = "E0108" "nul-byte" Error: "The file contains a NUL byte.";
     E0109 = "E0109" "bad-alias" Error: "An alias line is malformed.";
     E0110 = "E0110" "count-too-large" Error: "An argument count is larger than the rest of the file could hold.";
     // --- scene semantics ----------------------------------------------------------
@@ -42,6 +41,7 @@ codes! {
     E0307 = "E0307" "command-failed" Error: "A '!' command could not be expanded: a generator rejected its arguments, or commands nest too deep.";
     // --- scene warnings -----------------------------------------------------------
     W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
+    W0103 = "W0103" "nul-byte" Warning: "A word contains a NUL byte; Radiance ignores the rest of that word.";
     W0102 = "W0102" "long-word" Warning: "A word is longer than the 511 characters Radiance reads; Radiance splits it.";
     W0201 = "W0201" "value-out-of-range" Warning: "An argument is outside its physically plausible range.";
     W0202 = "W0202" "negative-radius" Warning: "A negative radius flips the surface's orientation (Radiance changes its type).";
@@ -49,6 +49,9 @@ codes! {
     W0204 = "W0204" "degenerate-polygon" Warning: "A polygon has zero area or collinear vertices.";
     W0206 = "W0206" "degenerate-geometry" Warning: "The geometry has no extent (zero radius, equal cone ends, zero normal); Radiance drops it.";
     W0205 = "W0205" "cone-equal-radii" Warning: "A cone or cup with equal radii is a cylinder or tube.";
+    W0207 = "W0207" "ignored-strings" Warning: "String arguments given to a type that takes none; Radiance ignores them.";
+    W0304 = "W0304" "error-in-unused" Warning: "A problem Radiance only reports when the primitive is used; nothing uses it.";
+    W0305 = "W0305" "unknown-antimatter-modifier" Warning: "An antimatter names a modifier that is not defined before it.";
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";

@@ -61,12 +61,14 @@ pub fn lower_with(
         warn_unused: Vec::new(),
         files,
         commands,
+        deferred: Vec::new(),
     };
     for input in inputs {
         cx.items(&input.syntax.items, input.warn_unused, 0);
     }
-    cx.report_unused();
     cx.report_conflicting_materials();
+    cx.settle_deferred();
+    cx.report_unused();
     (cx.scene, cx.diags)
 }
 
@@ -83,6 +85,18 @@ struct Lowering<'a> {
     warn_unused: Vec<bool>,
     files: &'a dyn FileLookup,
     commands: &'a dyn CommandExpander,
+    /// Errors Radiance only raises when the primitive is actually used (materials are
+    /// checked when a ray first hits them, sources when they are set up), by the index
+    /// of the diagnostic. Judged once the whole scene is known.
+    deferred: Vec<(Deferred, usize)>,
+}
+
+#[derive(Clone, Copy)]
+enum Deferred {
+    /// Only an error if the modifier is reachable from a surface.
+    IfUsed(PrimId),
+    /// Only an error if this `source` is made of a light-emitting material.
+    IfLightSource(PrimId),
 }
 
 impl Lowering<'_> {
@@ -162,6 +176,8 @@ impl Lowering<'_> {
             return;
         }
         let modifier = self.resolve_modifier(&p.modifier, schema);
+        let id = PrimId(self.scene.prims.len() as u32);
+        let first = self.diags.len();
         let counts_ok = self.check_counts(p, schema);
         if counts_ok {
             self.check_values(p, schema);
@@ -177,6 +193,20 @@ impl Lowering<'_> {
         } else {
             other(p)
         };
+        let condition = if schema.category.is_modifier() {
+            Some(Deferred::IfUsed(id))
+        } else if schema.name == "source" {
+            Some(Deferred::IfLightSource(id))
+        } else {
+            None
+        };
+        if let Some(condition) = condition {
+            for i in first..self.diags.len() {
+                if self.diags[i].is_error() {
+                    self.deferred.push((condition, i));
+                }
+            }
+        }
         let prim = Prim {
             name: p.name.text.clone(),
             name_span: p.name.span,
@@ -389,6 +419,21 @@ impl Lowering<'_> {
             if list.count.accepts(n) {
                 continue;
             }
+            if what == "string" && list.count == schema::Count::Exactly(0) {
+                // No reader of a string-less type looks at its strings.
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::W0207,
+                        span,
+                        format!(
+                            "{} takes no string arguments; Radiance ignores these {n}",
+                            schema.name
+                        ),
+                    )
+                    .with_hint("write 0 as the string count"),
+                );
+                continue;
+            }
             ok = false;
             self.diags.push(
                 Diagnostic::new(
@@ -511,6 +556,18 @@ impl Lowering<'_> {
             if arg.kind != StringKind::Modifier || w.text == "void" || w.text == "inherit" {
                 continue;
             }
+            if schema.name == "antimatter" && !self.modifiers.contains_key(&w.text) {
+                // Radiance only warns about these when a ray enters the antimatter.
+                self.diags.push(Diagnostic::new(
+                    codes::W0305,
+                    w.span,
+                    format!(
+                        "antimatter '{}' names '{}', which is not defined before it",
+                        p.name.text, w.text
+                    ),
+                ));
+                continue;
+            }
             if let ModRef::Prim(id) = self.lookup_modifier(&w.text, w.span) {
                 refs.push(id);
             }
@@ -542,6 +599,61 @@ impl Lowering<'_> {
                 .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
             );
         }
+    }
+
+    /// Keeps deferred errors whose condition holds and turns the rest into W0304
+    /// warnings, keeping the original code in the message.
+    fn settle_deferred(&mut self) {
+        let reachable = self.scene.reachable();
+        for (condition, index) in std::mem::take(&mut self.deferred) {
+            let (id, why) = match condition {
+                Deferred::IfUsed(id) => {
+                    if reachable.get(id.0 as usize).copied().unwrap_or(true) {
+                        continue;
+                    }
+                    (id, "nothing uses it, so Radiance never reads it")
+                }
+                Deferred::IfLightSource(id) => {
+                    if self.emits_light(id) {
+                        continue;
+                    }
+                    (
+                        id,
+                        "its material emits no light, so Radiance never reads it",
+                    )
+                }
+            };
+            let name = self
+                .scene
+                .get(id)
+                .map(|p| p.name.clone())
+                .unwrap_or_default();
+            if let Some(d) = self.diags.get_mut(index) {
+                d.message = format!("[{}] {} ('{name}': {why})", d.code.id, d.message);
+                d.code = codes::W0304;
+                d.severity = codes::W0304.severity;
+            }
+        }
+    }
+
+    /// Whether the first material in a primitive's modifier chain emits light.
+    fn emits_light(&self, id: PrimId) -> bool {
+        let Some(p) = self.scene.get(id) else {
+            return false;
+        };
+        let mut next = p.modifier;
+        for _ in 0..256 {
+            let ModRef::Prim(m) = next else { return false };
+            let Some((category, modifier)) = self.chain_link(m) else {
+                return false;
+            };
+            match category {
+                Category::Light => return true,
+                Category::Material => return false,
+                _ => next = modifier,
+            }
+        }
+        false
     }
 
     /// What an element of a modifier chain really is: aliases are followed to their
@@ -618,10 +730,15 @@ impl Lowering<'_> {
         let rgb = |i: usize| -> Rgb { [r[i], r[i + 1], r[i + 2]] };
         let first_string = || s.first().cloned();
         match schema.name {
-            "source" => PrimKind::Source {
-                direction: v3(0),
-                angle: r[3],
-            },
+            "source" => {
+                if v3(0) == [0.0; 3] {
+                    self.zero_direction(p, 0);
+                }
+                PrimKind::Source {
+                    direction: v3(0),
+                    angle: r[3],
+                }
+            }
             "sphere" | "bubble" => {
                 self.check_radius(p, r[3], 3);
                 let (center, radius) = (v3(0), r[3]);
@@ -715,11 +832,16 @@ impl Lowering<'_> {
                 color: rgb(0),
                 max_radius: r[3],
             },
-            "spotlight" => PrimKind::Spotlight {
-                color: rgb(0),
-                angle: r[3],
-                direction: v3(4),
-            },
+            "spotlight" => {
+                if v3(4) == [0.0; 3] {
+                    self.zero_direction(p, 4);
+                }
+                PrimKind::Spotlight {
+                    color: rgb(0),
+                    angle: r[3],
+                    direction: v3(4),
+                }
+            }
             "mirror" => PrimKind::Mirror {
                 alternate: first_string(),
                 color: rgb(0),
@@ -760,6 +882,22 @@ impl Lowering<'_> {
             "antimatter" => PrimKind::Antimatter { modifiers: s },
             _ => other(p),
         }
+    }
+
+    /// Radiance stops with "zero direction" when it sets up such a source.
+    fn zero_direction(&mut self, p: &Primitive, first: usize) {
+        let span = real_span(p, first).to(real_span(p, first + 2));
+        self.diags.push(
+            Diagnostic::new(
+                codes::E0203,
+                span,
+                format!(
+                    "the direction of {} '{}' is the zero vector",
+                    p.kind.text, p.name.text
+                ),
+            )
+            .with_hint("give the direction the light travels toward, e.g. 0 0 -1"),
+        );
     }
 
     fn degenerate(&mut self, p: &Primitive, span: Span, why: &str) {
