@@ -197,11 +197,11 @@ impl SearchPath {
     }
 }
 
-impl FileLookup for SearchPath {
-    fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
+impl SearchPath {
+    fn find(&self, name: &str, from: FileId) -> Option<PathBuf> {
         let p = Path::new(name);
         if p.is_absolute() {
-            return p.exists();
+            return p.exists().then(|| p.to_path_buf());
         }
         let scene_dir = self
             .scene_dirs
@@ -212,6 +212,25 @@ impl FileLookup for SearchPath {
             .into_iter()
             .chain(std::iter::once(PathBuf::from(".")))
             .chain(self.raypath.iter().cloned())
-            .any(|d| d.join(p).exists())
+            .map(|d| d.join(p))
+            .find(|candidate| candidate.exists())
+    }
+}
+
+/// Auxiliary files larger than this are not read for content checks.
+const MAX_AUX_FILE: u64 = 64 << 20;
+
+impl FileLookup for SearchPath {
+    fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
+        self.find(name, from).is_some()
+    }
+
+    fn read(&self, name: &str, _kind: FileKind, from: FileId) -> Option<String> {
+        let path = self.find(name, from)?;
+        if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {
+            return None;
+        }
+        let bytes = std::fs::read(path).ok()?;
+        Some(String::from_utf8_lossy(&bytes).into_owned())
     }
 }

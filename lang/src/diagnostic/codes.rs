@@ -39,6 +39,7 @@ codes! {
     E0304 = "E0304" "alias-of-surface" Error: "An alias refers to a surface; only modifiers can be aliased.";
     E0305 = "E0305" "missing-file" Error: "A file named by an argument is not found in the scene's folder or RAYPATH.";
     E0307 = "E0307" "command-failed" Error: "A '!' command could not be expanded: a generator rejected its arguments, or commands nest too deep.";
+    E0308 = "E0308" "bad-data-file" Error: "A data file named by a primitive is malformed.";
     // --- scene warnings -----------------------------------------------------------
     W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
     W0103 = "W0103" "nul-byte" Warning: "A word contains a NUL byte; Radiance ignores the rest of that word.";

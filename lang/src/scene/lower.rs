@@ -20,6 +20,12 @@ use crate::source::{FileId, Span};
 /// scene's folder and RAYPATH; `lang` itself never touches the file system.
 pub trait FileLookup {
     fn exists(&self, name: &str, kind: FileKind, from: FileId) -> bool;
+
+    /// The text of a file found the same way, for the checks that look inside
+    /// auxiliary files (data files, function files). `None` skips those checks.
+    fn read(&self, _name: &str, _kind: FileKind, _from: FileId) -> Option<String> {
+        None
+    }
 }
 
 /// For callers with no file system (or who don't want file checks).
@@ -530,6 +536,20 @@ impl Lowering<'_> {
                 continue;
             };
             if kind == FileKind::Cal && w.text == "." {
+                continue;
+            }
+            if kind == FileKind::Data
+                && let Some(text) = self.files.read(&w.text, kind, w.span.file)
+                && let Err(e) = crate::datafile::DataFile::parse(&text)
+            {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0308,
+                        w.span,
+                        format!("data file '{}' cannot be read: {e}", w.text),
+                    )
+                    .with_hint("see the Radiance reference manual, section 2.2.2, for the data file layout"),
+                );
                 continue;
             }
             if !self.files.exists(&w.text, kind, w.span.file) {
