@@ -7,8 +7,11 @@
 //! Each scene is checked from its own folder, as Radiance ran it, so relative `.cal`, `.dat`,
 //! picture and octree names resolve the same way.
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output, Stdio};
+use std::thread;
+use std::time::{Duration, Instant};
 
 use serde_json::Value;
 
@@ -78,10 +81,9 @@ fn check(scene: &Path) -> CheckOutcome {
         Some(lib) => command.env("RAYPATH", format!(".:{}", lib.display())),
         None => command.env_remove("RAYPATH"),
     };
-    let output = command.output();
-    let output = match output {
+    let output = match run_with_timeout(command) {
         Ok(o) => o,
-        Err(e) => return CheckOutcome::Broken(format!("could not run radc: {e}")),
+        Err(why) => return CheckOutcome::Broken(why),
     };
     let stderr = String::from_utf8_lossy(&output.stderr);
     let code = output.status.code();
@@ -118,6 +120,58 @@ fn check(scene: &Path) -> CheckOutcome {
             stderr.trim()
         )),
     }
+}
+
+/// How long one `radc check` may take: the corpus holds huge counts (`0 0 999999999`) that
+/// must fail fast, not allocate or loop.
+const CHECK_TIMEOUT: Duration = Duration::from_secs(30);
+
+fn run_with_timeout(mut command: Command) -> Result<Output, String> {
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("could not run radc: {e}"))?;
+    // Drain both pipes on their own threads so a chatty child cannot block on a full pipe.
+    let drain = |pipe: Option<Box<dyn Read + Send>>| {
+        thread::spawn(move || {
+            let mut bytes = Vec::new();
+            if let Some(mut pipe) = pipe {
+                let _ = pipe.read_to_end(&mut bytes);
+            }
+            bytes
+        })
+    };
+    let stdout = drain(
+        child
+            .stdout
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let stderr = drain(
+        child
+            .stderr
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let start = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break status,
+            Ok(None) if start.elapsed() > CHECK_TIMEOUT => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(format!("radc check took over {CHECK_TIMEOUT:?}; killed"));
+            }
+            Ok(None) => thread::sleep(Duration::from_millis(5)),
+            Err(e) => return Err(format!("waiting for radc: {e}")),
+        }
+    };
+    Ok(Output {
+        status,
+        stdout: stdout.join().unwrap_or_default(),
+        stderr: stderr.join().unwrap_or_default(),
+    })
 }
 
 /// Checks every scene against its verdict and panics listing all mismatches at once.
