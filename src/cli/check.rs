@@ -233,4 +233,12 @@ impl FileLookup for SearchPath {
         let bytes = std::fs::read(path).ok()?;
         Some(String::from_utf8_lossy(&bytes).into_owned())
     }
+
+    fn read_head(&self, name: &str, _kind: FileKind, from: FileId, max: usize) -> Option<Vec<u8>> {
+        use std::io::Read;
+        let file = std::fs::File::open(self.find(name, from)?).ok()?;
+        let mut head = Vec::with_capacity(max);
+        file.take(max as u64).read_to_end(&mut head).ok()?;
+        Some(head)
+    }
 }

@@ -39,7 +39,8 @@ codes! {
     E0304 = "E0304" "alias-of-surface" Error: "An alias refers to a surface; only modifiers can be aliased.";
     E0305 = "E0305" "missing-file" Error: "A file named by an argument is not found in the scene's folder or RAYPATH.";
     E0307 = "E0307" "command-failed" Error: "A '!' command could not be expanded: a generator rejected its arguments, or commands nest too deep.";
-    E0308 = "E0308" "bad-data-file" Error: "A data file named by a primitive is malformed.";
+    E0308 = "E0308" "bad-data-file" Error: "A data file named by a primitive is malformed, or has the wrong number of dimensions.";
+    E0309 = "E0309" "bad-picture-file" Error: "A file named as a picture is not a Radiance picture.";
     // --- scene warnings -----------------------------------------------------------
     W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
     W0103 = "W0103" "nul-byte" Warning: "A word contains a NUL byte; Radiance ignores the rest of that word.";
@@ -52,7 +53,7 @@ codes! {
     W0205 = "W0205" "cone-equal-radii" Warning: "A cone or cup with equal radii is a cylinder or tube.";
     W0207 = "W0207" "ignored-strings" Warning: "String arguments given to a type that takes none; Radiance ignores them.";
     W0304 = "W0304" "error-in-unused" Warning: "A problem Radiance only reports when the primitive is used; nothing uses it.";
-    W0305 = "W0305" "unknown-antimatter-modifier" Warning: "An antimatter names a modifier that is not defined before it.";
+    W0305 = "W0305" "unknown-named-modifier" Warning: "An antimatter or illum names a modifier that is not defined before it; Radiance only warns.";
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";

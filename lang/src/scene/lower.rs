@@ -26,6 +26,18 @@ pub trait FileLookup {
     fn read(&self, _name: &str, _kind: FileKind, _from: FileId) -> Option<String> {
         None
     }
+
+    /// The first `max` bytes of a file found the same way (to recognise a picture
+    /// without reading all of it). `None` skips the check.
+    fn read_head(
+        &self,
+        _name: &str,
+        _kind: FileKind,
+        _from: FileId,
+        _max: usize,
+    ) -> Option<Vec<u8>> {
+        None
+    }
 }
 
 /// For callers with no file system (or who don't want file checks).
@@ -188,6 +200,7 @@ impl Lowering<'_> {
         if counts_ok {
             self.check_values(p, schema);
             self.check_files(p, schema);
+            self.check_data_coordinates(p, schema);
         }
         let refs = if counts_ok {
             self.string_modifier_refs(p, schema)
@@ -525,8 +538,9 @@ impl Lowering<'_> {
     }
 
     fn check_files(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
         for (i, w) in p.strings.items.iter().enumerate() {
-            let Some((arg, _)) = schema.strings.arg_at(i) else {
+            let Some((arg, _)) = schema.strings.arg_in(i, &words) else {
                 continue;
             };
             if arg.kind == StringKind::Transform {
@@ -552,6 +566,23 @@ impl Lowering<'_> {
                 );
                 continue;
             }
+            if kind == FileKind::Picture
+                && let Some(head) = self.files.read_head(&w.text, kind, w.span.file, 2)
+                && head != b"#?"
+            {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0309,
+                        w.span,
+                        format!(
+                            "'{}' is not a Radiance picture (it does not start with '#?')",
+                            w.text
+                        ),
+                    )
+                    .with_hint("convert images with ra_tiff, ra_ppm or ra_bmp -r"),
+                );
+                continue;
+            }
             if !self.files.exists(&w.text, kind, w.span.file) {
                 self.diags.push(
                     Diagnostic::new(codes::E0305, w.span, format!("file '{}' not found", w.text))
@@ -565,9 +596,10 @@ impl Lowering<'_> {
     }
 
     fn string_modifier_refs(&mut self, p: &Primitive, schema: &PrimitiveType) -> Vec<PrimId> {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
         let mut refs = Vec::new();
         for (i, w) in p.strings.items.iter().enumerate() {
-            let Some((arg, _)) = schema.strings.arg_at(i) else {
+            let Some((arg, _)) = schema.strings.arg_in(i, &words) else {
                 continue;
             };
             if arg.kind == StringKind::Transform {
@@ -576,8 +608,11 @@ impl Lowering<'_> {
             if arg.kind != StringKind::Modifier || w.text == "void" || w.text == "inherit" {
                 continue;
             }
-            if schema.name == "antimatter" && !self.modifiers.contains_key(&w.text) {
-                // Radiance only warns about these when a ray enters the antimatter.
+            if matches!(schema.name, "antimatter" | "illum")
+                && !self.modifiers.contains_key(&w.text)
+            {
+                // Radiance only warns about these (when a ray enters the antimatter, or
+                // when an illum's alternate material is looked up).
                 self.diags.push(Diagnostic::new(
                     codes::W0305,
                     w.span,
@@ -617,6 +652,77 @@ impl Lowering<'_> {
                     format!("{} '{}' is never used", p.schema.name, p.name),
                 )
                 .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
+            );
+        }
+    }
+
+    /// A data-driven type needs one coordinate function per dimension of its data
+    /// file (spectral types one fewer: wavelength is the last dimension), written after
+    /// the function file and before any transform. Radiance checks this when it first
+    /// loads the data ("too few string arguments").
+    fn check_data_coordinates(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
+        let mut cal_at = None;
+        let mut dims = None;
+        let mut data_word = None;
+        for (i, w) in p.strings.items.iter().enumerate() {
+            match schema.strings.arg_in(i, &words).map(|(a, _)| a.kind) {
+                Some(StringKind::File(FileKind::Cal)) if cal_at.is_none() => cal_at = Some(i),
+                Some(StringKind::File(FileKind::Data)) => {
+                    let parsed = self
+                        .files
+                        .read(&w.text, FileKind::Data, w.span.file)
+                        .and_then(|t| crate::datafile::DataFile::parse(&t).ok());
+                    if let Some(d) = parsed {
+                        dims = Some(dims.unwrap_or(0).max(d.dimensions()));
+                        data_word = Some(w);
+                    }
+                }
+                _ => {}
+            }
+        }
+        let (Some(dims), Some(data_word)) = (dims, data_word) else {
+            return;
+        };
+        if schema.name == "specfile" {
+            if dims != 1 {
+                self.diags.push(Diagnostic::new(
+                    codes::E0308,
+                    data_word.span,
+                    format!(
+                        "specfile needs a 1-dimensional data file (wavelength); '{}' has {dims}",
+                        data_word.text
+                    ),
+                ));
+            }
+            return;
+        }
+        let Some(cal_at) = cal_at else { return };
+        let end = schema
+            .strings
+            .transform_start(&words)
+            .unwrap_or(words.len());
+        let coords = end.saturating_sub(cal_at + 1);
+        let needed = if schema.name.starts_with("spec") {
+            dims.saturating_sub(1)
+        } else {
+            dims
+        };
+        if coords < needed {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0202,
+                    p.strings.count_span,
+                    format!(
+                        "{} '{}' gives {coords} coordinate function{} for the {dims}-dimensional data file '{}'; it needs {needed}",
+                        schema.name,
+                        p.name.text,
+                        if coords == 1 { "" } else { "s" },
+                        data_word.text
+                    ),
+                )
+                .with_label(data_word.span, format!("{dims}-dimensional data"))
+                .with_hint("after the function file, name one coordinate variable or function per data dimension"),
             );
         }
     }
