@@ -617,8 +617,8 @@ impl Lowering<'_> {
                     codes::W0305,
                     w.span,
                     format!(
-                        "antimatter '{}' names '{}', which is not defined before it",
-                        p.name.text, w.text
+                        "{} '{}' names '{}', which is not defined before it",
+                        schema.name, p.name.text, w.text
                     ),
                 ));
                 continue;
