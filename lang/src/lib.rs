@@ -7,6 +7,7 @@
 pub mod diagnostic;
 pub mod schema;
 pub mod source;
+pub mod transform;
 
 pub use diagnostic::{Code, Diagnostic, Label, Severity};
 pub use source::{FileId, LineIndex, Span};
