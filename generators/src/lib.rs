@@ -9,6 +9,7 @@
 
 pub mod genbox;
 pub mod genprism;
+mod mesh;
 pub mod printf;
 pub mod words;
 pub mod xform;
