@@ -33,7 +33,7 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
         return Err(usage());
     }
     let size = [atof(&args[2]), atof(&args[3]), atof(&args[4])];
-    if size.iter().any(|&s| s <= 0.0 || s.is_nan()) {
+    if size.iter().any(|&s| s <= 0.0) {
         return Err(usage());
     }
     let mut b = Box3 {
@@ -61,7 +61,7 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
             Some(c @ (b'r' | b'b')) => {
                 rounded |= *c == b'r';
                 b.bevel = atof(value()?);
-                if b.bevel.is_nan() || b.bevel <= 0.0 {
+                if b.bevel <= 0.0 {
                     return Err(usage());
                 }
             }

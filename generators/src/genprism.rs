@@ -107,13 +107,14 @@ pub fn genprism(args: &[String], host: &mut dyn Host) -> Result<String, GenError
         if ends {
             p.rounded_ends(&mut out);
         }
+        p.sides(&mut out, true);
     } else {
         out.push_str(&command_comment("genprism", args));
         if ends {
             p.ends(&mut out);
         }
+        p.sides(&mut out, false);
     }
-    p.sides(&mut out);
     Ok(out)
 }
 
@@ -170,9 +171,8 @@ impl Prism {
         }
     }
 
-    fn sides(&self, out: &mut String) {
+    fn sides(&self, out: &mut String, rounded: bool) {
         let n = self.verts.len();
-        let rounded = self.crad != 0.0;
         let last = if self.closed { n - 1 } else { n };
         for i in 0..last {
             let j = (i + 1) % n;

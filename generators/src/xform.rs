@@ -29,6 +29,9 @@ const COMMAND_LINE: usize = 2048;
 /// would otherwise recurse for ever).
 const MAX_DEPTH: usize = 32;
 
+/// More copies than this from `-a` are refused rather than filling memory.
+const MAX_ARRAY: i64 = 1_000_000;
+
 /// The scene xform prints for `args` (the words after `xform`).
 pub fn xform(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
     let mut run = Run {
@@ -148,6 +151,11 @@ impl Run<'_> {
             Some(c) if atoi(c) > 0 => atoi(c),
             _ => return Err(GenError::Usage("missing count for -a option".into())),
         };
+        if n > MAX_ARRAY {
+            return Err(GenError::Invalid(format!(
+                "-a {n}: radc makes at most {MAX_ARRAY} copies"
+            )));
+        }
         let old_id = (1..args.len())
             .rev()
             .find(|&i| args[i - 1] == "-n")
