@@ -94,11 +94,6 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
             "genbox: -o (Wavefront .OBJ output) is not reproduced yet".into(),
         ));
     }
-    if smooth && levels > 1 {
-        return Err(GenError::Unsupported(
-            "genbox: -s (smoothed rounding) is not reproduced yet".into(),
-        ));
-    }
     let mut out = command_comment("genbox", args);
     let mut w = Writer {
         b: &b,
@@ -112,7 +107,7 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
         if !smooth {
             mesh.remove_normals();
         }
-        mesh.write_flat(&mut out, &b.material, &b.name);
+        mesh.write_radiance(&mut out, &b.material, &b.name);
     }
     Ok(out)
 }

@@ -295,13 +295,14 @@ fn rotation(axis: usize, degrees: f64) -> Transform {
     }
 }
 
-/// `a * b` with the same summation order as Radiance's `multmat4`, so results match
-/// to the bit.
+/// `a * b` summed as the reference build's `multmat4` sums it, so results match to
+/// the bit: the oracle (pyradiance) compiles Radiance with `-ffast-math`, and its
+/// `multmat4` adds the four products in pairs, `(t0 + t1) + (t2 + t3)`.
 pub fn multiply(a: &Mat4, b: &Mat4) -> Mat4 {
     let mut out = [[0.0; 4]; 4];
     for (i, row) in out.iter_mut().enumerate() {
         for (j, o) in row.iter_mut().enumerate() {
-            *o = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j] + a[i][3] * b[3][j];
+            *o = (a[i][0] * b[0][j] + a[i][1] * b[1][j]) + (a[i][2] * b[2][j] + a[i][3] * b[3][j]);
         }
     }
     out

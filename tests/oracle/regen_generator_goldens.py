@@ -31,6 +31,7 @@ CASES = [
     ("genbox-round-n2", "genbox", "m b 2 2 2 -r .25 -n 2", None),
     ("genbox-round-smooth-flag", "genbox", "m b 2 2 2 -r .25 -s", None),
     ("genbox-round-mesh-inverted", "genbox", "m b 2 2 2 -r .25 -n 3 -i", None),
+    ("genbox-round-mesh-smooth", "genbox", "m b 1 2 3 -r 0.1 -n 3 -s", None),
     ("genbox-tiny", "genbox", "glass pane 1e-3 123.456789 7.25", None),
     ("genbox-quoted-name", "genbox", "m 'my box' 1 1 1", None),
     ("genbox-sci", "genbox", "m b 1e5 2.5e-7 3", None),
