@@ -4,8 +4,9 @@
 //! the far (1) or near (0) side on x, y, z; bits 3-5 pull that coordinate in by the
 //! bevel. Faces are named by the letters of their vertex codes. `-i` swaps near and far,
 //! which turns every face inside out. Rounding finer than one segment per quarter circle
-//! (`-n` above 2, or `-r` with `-i`) and `-o` go through Radiance's mesh writer, which
-//! radc does not reproduce yet.
+//! (`-n` above 2, or `-r` with `-i`, which defaults to 32 segments) and `-o` go through
+//! Radiance's `.OBJ` scene library instead: see `mesh.rs` (Radiance polygons, `-s`
+//! Phong smoothing) and `wavefront.rs` (`-o`).
 
 use crate::mesh::{Corner, Mesh, cross, normalize, sub};
 use crate::printf::g;
@@ -89,16 +90,11 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
             levels += 1;
         }
     }
-    if obj_out {
-        return Err(GenError::Unsupported(
-            "genbox: -o (Wavefront .OBJ output) is not reproduced yet".into(),
-        ));
-    }
     let mut out = command_comment("genbox", args);
     let mut w = Writer {
         b: &b,
         out: &mut out,
-        mesh: (levels > 1).then(Mesh::default),
+        mesh: (levels > 1 || obj_out).then(Mesh::default),
         vid: [None; 64],
         levels,
     };
@@ -107,7 +103,14 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
         if !smooth {
             mesh.remove_normals();
         }
-        mesh.write_radiance(&mut out, &b.material, &b.name);
+        if !obj_out {
+            mesh.write_radiance(&mut out, &b.material, &b.name);
+        } else {
+            if levels > 0 {
+                mesh.coalesce_vertices(2.0 * crate::mesh::FTINY);
+            }
+            mesh.write_obj(&mut out, &b.material, &b.name);
+        }
     }
     Ok(out)
 }

@@ -11,6 +11,7 @@ pub mod genbox;
 pub mod genprism;
 mod mesh;
 pub mod printf;
+mod wavefront;
 pub mod words;
 pub mod xform;
 

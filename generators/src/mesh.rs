@@ -29,6 +29,8 @@ pub struct Mesh {
     pub normals: Vec<[f32; 3]>,
     /// In order of creation; output walks it backwards, as the C list is pushed at the head.
     pub faces: Vec<Face>,
+    /// For each vertex, the faces using it, most recently linked first (`vflist`).
+    pub uses: Vec<Vec<usize>>,
 }
 
 /// `normalize()` from `src/common/fvect.c`: returns the old length.
@@ -68,6 +70,7 @@ pub fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
 impl Mesh {
     pub fn add_vertex(&mut self, p: [f64; 3]) -> usize {
         self.vertices.push(p);
+        self.uses.push(Vec::new());
         self.vertices.len() - 1
     }
 
@@ -83,9 +86,17 @@ impl Mesh {
 
     /// `addFace()`: faces under three corners are dropped.
     pub fn add_face(&mut self, corners: Vec<Corner>) {
-        if let Some(face) = self.make_face(corners) {
-            self.faces.push(face);
+        let Some(face) = self.make_face(corners) else {
+            return;
+        };
+        let id = self.faces.len();
+        for (k, c) in face.corners.iter().enumerate() {
+            let first = face.corners[..k].iter().all(|d| d.vertex != c.vertex);
+            if let (true, Some(list)) = (first, self.uses.get_mut(c.vertex)) {
+                list.insert(0, id);
+            }
         }
+        self.faces.push(face);
     }
 
     /// A face with its degeneracy decided as `addFace()` decides it.

@@ -40,6 +40,18 @@ pub fn g_body(value: f64, precision: usize) -> String {
     }
 }
 
+/// `%.Pe`: mantissa with P decimals, exponent signed with at least two digits.
+pub fn e(value: f64, precision: usize) -> String {
+    if !value.is_finite() {
+        return g_body(value, precision);
+    }
+    let sci = format!("{value:.precision$e}");
+    let (mantissa, exp) = sci.split_once('e').unwrap_or((sci.as_str(), "0"));
+    let x: i64 = exp.parse().unwrap_or(0);
+    let sign = if x < 0 { '-' } else { '+' };
+    format!("{mantissa}e{sign}{:02}", x.unsigned_abs())
+}
+
 fn strip_zeros(s: &str) -> &str {
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.')
@@ -78,5 +90,9 @@ mod tests {
         assert_eq!(g(0.05, 12, 6), "        0.05");
         assert_eq!(g_body(2.5, 1), "2");
         assert_eq!(g_body(0.000123456, 3), "0.000123");
+        assert_eq!(e(0.0, 6), "0.000000e+00");
+        assert_eq!(e(-0.0, 6), "-0.000000e+00");
+        assert_eq!(e(123456.789, 6), "1.234568e+05");
+        assert_eq!(e(1.5e-300, 2), "1.50e-300");
     }
 }
