@@ -9,6 +9,7 @@ pub mod diagnostic;
 pub mod scene;
 pub mod schema;
 pub mod source;
+pub mod transform;
 
 pub use diagnostic::{Code, Diagnostic, Label, Severity};
 pub use source::{FileId, LineIndex, Span};

@@ -1,6 +1,10 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
 mod check;
+// `gen` is a reserved word in edition 2024, so the file is named for the task and the
+// module for what it does.
+#[path = "gen.rs"]
+mod generate;
 mod report;
 
 use std::process::ExitCode;
@@ -24,6 +28,21 @@ const COMMANDS: &[Command] = &[
         name: "help",
         summary: "list the commands",
         run: help,
+    },
+    Command {
+        name: "genbox",
+        summary: "generate a box, as Radiance's genbox",
+        run: generate::genbox,
+    },
+    Command {
+        name: "genprism",
+        summary: "generate an extruded polygon, as Radiance's genprism",
+        run: generate::genprism,
+    },
+    Command {
+        name: "xform",
+        summary: "transform a scene, as Radiance's xform",
+        run: generate::xform,
     },
 ];
 

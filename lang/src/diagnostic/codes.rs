@@ -57,4 +57,9 @@ codes! {
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";
+    // --- transforms, generators and '!' commands -----------------------------------
+    E0801 = "E0801" "unknown-transform-option" Error: "A word in a transform is not one of -t -rx -ry -rz -s -mx -my -mz -i.";
+    E0802 = "E0802" "bad-transform-argument" Error: "A transform option is missing an argument, or an argument is not a number.";
+    E0803 = "E0803" "zero-scale" Error: "A transform scales by 0, which Radiance refuses.";
+    E0804 = "E0804" "repeat-too-large" Error: "A transform's -i repeat count is too large to apply.";
 }
