@@ -14,6 +14,7 @@ use radc_lang::schema::FileKind;
 use radc_lang::{Diagnostic, FileId, Severity};
 
 use super::USAGE_ERROR;
+use super::expand::Commands;
 use super::report::{self, Format, Sources};
 
 const USAGE: &str =
@@ -23,6 +24,7 @@ struct Options {
     format: Format,
     deny_warnings: bool,
     quiet: bool,
+    allow_commands: bool,
     paths: Vec<PathBuf>,
 }
 
@@ -31,6 +33,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         format: Format::Human,
         deny_warnings: false,
         quiet: false,
+        allow_commands: false,
         paths: Vec::new(),
     };
     let mut it = args.iter();
@@ -49,6 +52,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             },
             "--deny=warnings" | "-W" => o.deny_warnings = true,
             "-q" | "--quiet" => o.quiet = true,
+            "--allow-commands" => o.allow_commands = true,
             "-h" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s != "-" => return Err(format!("unknown option '{s}'")),
             path => o.paths.push(PathBuf::from(path)),
@@ -80,14 +84,14 @@ pub fn run(args: &[String]) -> ExitCode {
             collect_scenes(path, &mut found);
             found.sort();
             for f in found {
-                check_scene(&[f], &mut sources, &mut diags);
+                check_scene(&[f], opts.allow_commands, &mut sources, &mut diags);
             }
         } else {
             scene_files.push(path.clone());
         }
     }
     if !scene_files.is_empty() {
-        check_scene(&scene_files, &mut sources, &mut diags);
+        check_scene(&scene_files, opts.allow_commands, &mut sources, &mut diags);
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
@@ -127,7 +131,12 @@ fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 /// Reads, parses and lowers `paths` in order as one scene.
-fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
+fn check_scene(
+    paths: &[PathBuf],
+    allow_commands: bool,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) {
     let mut parsed = Vec::new();
     let mut dirs = Vec::new();
     for path in paths {
@@ -164,8 +173,12 @@ fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnos
             warn_unused: *warn_unused,
         })
         .collect();
+    let commands = Commands::new(dirs.clone(), sources_len(sources), allow_commands);
     let lookup = SearchPath::new(dirs);
-    let (_scene, more) = scene::lower(&inputs, &lookup);
+    let (_scene, more) = scene::lower_with(&inputs, &lookup, &commands);
+    for (name, text) in commands.into_sources() {
+        sources.add(name, text);
+    }
     diags.extend(more);
 }
 

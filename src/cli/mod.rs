@@ -1,6 +1,7 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
 mod check;
+mod expand;
 // `gen` is a reserved word in edition 2024, so the file is named for the task and the
 // module for what it does.
 #[path = "gen.rs"]

@@ -15,6 +15,7 @@ use super::syntax::{Alias, Command, Item, Primitive, SceneFile, Word};
 use crate::diagnostic::{self as codes, Diagnostic, suggest};
 use crate::schema::{self, ArgList, Category, FileKind, PrimitiveType, StringKind};
 use crate::source::{FileId, Span};
+use crate::transform::Transform;
 
 /// Answers whether an auxiliary file named in a scene exists. The CLI searches the
 /// scene's folder and RAYPATH; `lang` itself never touches the file system.
@@ -226,6 +227,11 @@ impl Lowering<'_> {
                 }
             }
         }
+        let transform = if counts_ok {
+            self.parse_transform(p, schema)
+        } else {
+            Transform::IDENTITY
+        };
         let prim = Prim {
             name: p.name.text.clone(),
             name_span: p.name.span,
@@ -233,6 +239,7 @@ impl Lowering<'_> {
             schema,
             modifier,
             refs,
+            transform,
             kind,
             span: p.span,
         };
@@ -385,6 +392,7 @@ impl Lowering<'_> {
             schema,
             modifier,
             refs: Vec::new(),
+            transform: Transform::IDENTITY,
             kind,
             span: a.span,
         };
@@ -653,6 +661,39 @@ impl Lowering<'_> {
                 )
                 .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
             );
+        }
+    }
+
+    /// The xform-style transform at the end of the string arguments. Radiance rejects
+    /// a bad one when it reads the primitive (oconv for instances and meshes, the
+    /// renderer for patterns and textures).
+    fn parse_transform(&mut self, p: &Primitive, schema: &PrimitiveType) -> Transform {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
+        let start = match schema.name {
+            // Everything after the octree or mesh file is the transform.
+            "instance" | "mesh" => 1,
+            _ => match schema.strings.transform_start(&words) {
+                Some(s) => s,
+                None => return Transform::IDENTITY,
+            },
+        };
+        let spanned: Vec<(&str, Span)> = p
+            .strings
+            .items
+            .iter()
+            .skip(start)
+            .map(|w| (w.text.as_str(), w.span))
+            .collect();
+        if spanned.is_empty() {
+            return Transform::IDENTITY;
+        }
+        match Transform::parse(&spanned) {
+            Ok(t) => t,
+            Err(d) => {
+                self.diags
+                    .push(d.with_label(p.kind.span, format!("transform of this {}", schema.name)));
+                Transform::IDENTITY
+            }
         }
     }
 
