@@ -6,6 +6,7 @@
 //! them (so `radc check materials.mat room.rad` resolves the room's materials). Each
 //! `.rad` file found under a directory argument is checked as a scene of its own.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -101,7 +102,9 @@ pub fn run(args: &[String]) -> ExitCode {
         .count();
     let warnings = diags.len() - errors;
     if opts.format == Format::Human && !opts.quiet {
-        println!(
+        // A closed pipe (`radc check ... | head`) is not an error worth a panic.
+        let _ = writeln!(
+            std::io::stdout(),
             "{} error{}, {} warning{}",
             errors,
             if errors == 1 { "" } else { "s" },

@@ -54,24 +54,36 @@ impl Commands {
             .unwrap_or_default()
     }
 
+    /// Runs a command line: a pipeline of built-in generators (`genbox ... | xform
+    /// -rz 90`) in-process, each stage reading the previous one's output; anything
+    /// else through the shell, if allowed.
     fn run(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
-        let Some(words) = simple_words(command) else {
+        let Some(stages) = pipeline(command) else {
             return self.shell(command, dir);
         };
-        let Some((program, rest)) = words.split_first() else {
-            return Ok(String::new());
-        };
-        let program = program.rsplit('/').next().unwrap_or(program);
-        let mut host = SceneHost {
-            dir: dir.to_path_buf(),
-        };
-        let result = match program {
-            "genbox" => radc_generators::genbox(rest),
-            "genprism" => radc_generators::genprism(rest, &mut host),
-            "xform" => radc_generators::xform(rest, &mut host),
-            _ => return self.shell(command, dir),
-        };
-        result.map_err(|e| failed(program, e))
+        let mut output = String::new();
+        for (i, words) in stages.iter().enumerate() {
+            let Some((program, rest)) = words.split_first() else {
+                return self.shell(command, dir);
+            };
+            let program = program.rsplit('/').next().unwrap_or(program);
+            let mut host = SceneHost {
+                dir: dir.to_path_buf(),
+                stdin: if i == 0 {
+                    String::new()
+                } else {
+                    std::mem::take(&mut output)
+                },
+            };
+            let result = match program {
+                "genbox" => radc_generators::genbox(rest),
+                "genprism" => radc_generators::genprism(rest, &mut host),
+                "xform" => radc_generators::xform(rest, &mut host),
+                _ => return self.shell(command, dir),
+            };
+            output = result.map_err(|e| failed(program, e))?;
+        }
+        Ok(output)
     }
 
     fn shell(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
@@ -106,6 +118,9 @@ impl Commands {
 
 fn failed(program: &str, e: GenError) -> Expansion {
     match e {
+        GenError::Scene(m) if m.contains("nested more than") => Expansion::Cycle {
+            message: format!("{program}: {m}"),
+        },
         GenError::Transform(d) => Expansion::Failed {
             message: format!("{program}: {}", d.message),
             hint: d.hint,
@@ -130,6 +145,36 @@ impl CommandExpander for Commands {
             Err(e) => e,
         }
     }
+}
+
+/// Splits a command line into pipeline stages of plain words; `None` if it uses any
+/// shell syntax other than `|`.
+fn pipeline(command: &str) -> Option<Vec<Vec<String>>> {
+    split_outside_quotes(command, '|')
+        .iter()
+        .map(|stage| simple_words(stage))
+        .collect()
+}
+
+/// Splits at `sep` where it is not inside quotes.
+fn split_outside_quotes(text: &str, sep: char) -> Vec<String> {
+    let mut parts = vec![String::new()];
+    let mut quote: Option<char> = None;
+    for c in text.chars() {
+        match quote {
+            Some(q) if c == q => quote = None,
+            None if c == '"' || c == '\'' => quote = Some(c),
+            None if c == sep => {
+                parts.push(String::new());
+                continue;
+            }
+            _ => {}
+        }
+        if let Some(last) = parts.last_mut() {
+            last.push(c);
+        }
+    }
+    parts
 }
 
 /// Splits a command into words as the shell would for a plain command: whitespace
@@ -172,6 +217,8 @@ fn simple_words(command: &str) -> Option<Vec<String>> {
 /// Files for generators run from a scene: relative to the scene's folder, then RAYPATH.
 struct SceneHost {
     dir: PathBuf,
+    /// The previous pipeline stage's output.
+    stdin: String,
 }
 
 impl Host for SceneHost {
@@ -190,7 +237,7 @@ impl Host for SceneHost {
     }
 
     fn read_stdin(&mut self) -> Result<String, GenError> {
-        Ok(String::new())
+        Ok(std::mem::take(&mut self.stdin))
     }
 }
 
@@ -205,6 +252,10 @@ mod tests {
             vec!["genbox", "my mat", "box", "1", "2", "3"]
         );
         assert!(simple_words("genbox m b 1 1 1 | xform -rz 90").is_none());
+        let stages = pipeline("genbox m 'a|b' 1 1 1 | xform -rz 90").unwrap();
+        assert_eq!(stages.len(), 2);
+        assert_eq!(stages[0][2], "a|b");
+        assert!(pipeline("genbox m b 1 1 1 > out.rad").is_none());
         assert!(simple_words("cat $HOME/x").is_none());
     }
 }

@@ -8,6 +8,7 @@ mod expand;
 mod generate;
 mod report;
 
+use std::io::Write;
 use std::process::ExitCode;
 
 /// A subcommand: its name, a one-line summary for `radc help`, and its entry point
@@ -57,7 +58,7 @@ pub fn dispatch(args: &[String]) -> ExitCode {
     let name = match name.as_str() {
         "-h" | "--help" => "help",
         "-V" | "--version" => {
-            println!("radc {}", env!("CARGO_PKG_VERSION"));
+            let _ = writeln!(std::io::stdout(), "radc {}", env!("CARGO_PKG_VERSION"));
             return ExitCode::SUCCESS;
         }
         n => n,
@@ -72,13 +73,14 @@ pub fn dispatch(args: &[String]) -> ExitCode {
 }
 
 fn help(_: &[String]) -> ExitCode {
-    println!(
-        "radc {}: a toolchain for the RADIANCE languages\n",
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "radc {}: a toolchain for the RADIANCE languages\n\nusage: radc <command> [options]\n\ncommands:",
         env!("CARGO_PKG_VERSION")
     );
-    println!("usage: radc <command> [options]\n\ncommands:");
     for c in COMMANDS {
-        println!("  {:<10} {}", c.name, c.summary);
+        let _ = writeln!(out, "  {:<10} {}", c.name, c.summary);
     }
     ExitCode::SUCCESS
 }

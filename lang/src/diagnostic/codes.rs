@@ -38,7 +38,7 @@ codes! {
     E0303 = "E0303" "undefined-alias-target" Error: "An alias refers to a name not defined earlier.";
     E0304 = "E0304" "alias-of-surface" Error: "An alias refers to a surface; only modifiers can be aliased.";
     E0305 = "E0305" "missing-file" Error: "A file named by an argument is not found in the scene's folder or RAYPATH.";
-    E0307 = "E0307" "command-failed" Error: "A '!' command could not be expanded: a generator rejected its arguments, or commands nest too deep.";
+    E0307 = "E0307" "command-cycle" Error: "'!' commands nest too deep: a file probably includes itself.";
     E0308 = "E0308" "bad-data-file" Error: "A data file named by a primitive is malformed, or has the wrong number of dimensions.";
     E0309 = "E0309" "bad-picture-file" Error: "A file named as a picture is not a Radiance picture.";
     // --- scene warnings -----------------------------------------------------------
@@ -54,6 +54,7 @@ codes! {
     W0207 = "W0207" "ignored-strings" Warning: "String arguments given to a type that takes none; Radiance ignores them.";
     W0304 = "W0304" "error-in-unused" Warning: "A problem Radiance only reports when the primitive is used; nothing uses it.";
     W0305 = "W0305" "unknown-named-modifier" Warning: "An antimatter or illum names a modifier that is not defined before it; Radiance only warns.";
+    W0306 = "W0306" "command-failed" Warning: "A '!' command failed (bad generator arguments, a missing file); Radiance warns and reads no output from it.";
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";

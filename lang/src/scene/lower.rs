@@ -168,8 +168,15 @@ impl Lowering<'_> {
                 )
                 .with_hint(reason),
             ),
+            Expansion::Cycle { message } => {
+                self.diags
+                    .push(Diagnostic::new(codes::E0307, c.span, message).with_hint(
+                        "a scene cannot include itself; remove the '!' line that reads this file",
+                    ))
+            }
             Expansion::Failed { message, hint } => {
-                let mut d = Diagnostic::new(codes::E0307, c.span, message);
+                // oconv only warns about a failing command ("bad status") and goes on.
+                let mut d = Diagnostic::new(codes::W0306, c.span, message);
                 if let Some(h) = hint {
                     d = d.with_hint(h);
                 }
@@ -1419,6 +1426,10 @@ mod tests {
                 ["loop"] => Expansion::Text {
                     file,
                     text: "!loop\n".into(),
+                },
+                ["fail"] => Expansion::Failed {
+                    message: "it failed".into(),
+                    hint: None,
                 },
                 _ => Expansion::NotExpanded {
                     reason: "not a generator".into(),
