@@ -31,7 +31,6 @@ const OWN_FOLDERS: [&str; 3] = [
 struct Verdict {
     key: String,
     accepted: bool,
-    needs_commands: bool,
     radiance_says: String,
 }
 
@@ -45,7 +44,6 @@ fn verdicts() -> Vec<Verdict> {
             Verdict {
                 key: key.clone(),
                 accepted: flag("oconv_ok") && flag("render_ok"),
-                needs_commands: flag("needs_commands"),
                 radiance_says: v
                     .get("radiance_says")
                     .and_then(Value::as_str)
