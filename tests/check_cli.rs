@@ -197,3 +197,18 @@ fn human_report_names_file_line_and_hint() {
     assert!(text.contains("did you mean 'plastic'?"), "{text}");
     assert!(!text.contains('\u{1b}'), "no colour codes when piped");
 }
+
+#[test]
+fn doc_and_explain_read_the_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let plastic = radc(&["doc", "plastic"], dir.path());
+    assert_eq!(plastic.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&plastic.stdout).contains("rough"));
+    assert_eq!(radc(&["doc", "plastc"], dir.path()).status.code(), Some(2));
+    let explain = radc(&["explain", "E0301"], dir.path());
+    assert!(String::from_utf8_lossy(&explain.stdout).contains("undefined-modifier"));
+    assert_eq!(
+        radc(&["explain", "E9999"], dir.path()).status.code(),
+        Some(2)
+    );
+}

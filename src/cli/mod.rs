@@ -1,6 +1,7 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
 mod check;
+mod doc;
 mod expand;
 // `gen` is a reserved word in edition 2024, so the file is named for the task and the
 // module for what it does.
@@ -25,6 +26,16 @@ const COMMANDS: &[Command] = &[
         name: "check",
         summary: "check scene files for errors (like oconv, but all errors at once)",
         run: check::run,
+    },
+    Command {
+        name: "doc",
+        summary: "primitive type reference: 'doc types', 'doc plastic', 'doc codes'",
+        run: doc::doc,
+    },
+    Command {
+        name: "explain",
+        summary: "what a diagnostic code means: 'explain E0301'",
+        run: doc::explain,
     },
     Command {
         name: "help",
