@@ -11,13 +11,11 @@ struct Command {
 }
 
 /// Every subcommand, in the order `radc help` lists them.
-const COMMANDS: &[Command] = &[
-    Command {
-        name: "help",
-        summary: "list the commands",
-        run: help,
-    },
-];
+const COMMANDS: &[Command] = &[Command {
+    name: "help",
+    summary: "list the commands",
+    run: help,
+}];
 
 pub const USAGE_ERROR: u8 = 2;
 
@@ -44,7 +42,10 @@ pub fn dispatch(args: &[String]) -> ExitCode {
 }
 
 fn help(_: &[String]) -> ExitCode {
-    println!("radc {}: a toolchain for the RADIANCE languages\n", env!("CARGO_PKG_VERSION"));
+    println!(
+        "radc {}: a toolchain for the RADIANCE languages\n",
+        env!("CARGO_PKG_VERSION")
+    );
     println!("usage: radc <command> [options]\n\ncommands:");
     for c in COMMANDS {
         println!("  {:<10} {}", c.name, c.summary);

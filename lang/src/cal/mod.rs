@@ -1,0 +1,9 @@
+//! calcomp, Radiance's function language (`.cal` files, `rcalc -e`, the expression
+//! arguments of `*func` primitives): lexer, parser, name resolution, constant folding,
+//! dependency graph and the checks `radc check` reports.
+
+pub mod lexer;
+pub mod parser;
+pub mod syntax;
+
+pub use parser::{parse, parse_expr};
