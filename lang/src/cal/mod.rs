@@ -7,3 +7,10 @@ pub mod parser;
 pub mod syntax;
 
 pub use parser::{parse, parse_expr};
+pub mod builtins;
+pub mod eval;
+pub mod fold;
+pub mod ir;
+pub mod resolve;
+
+pub use resolve::{Env, Host, Module};
