@@ -149,6 +149,8 @@ pub struct Evaluator<'m> {
     /// constant folding is on, as caldefn.c `dvalue` does).
     warn_nonconstant: bool,
     pub warnings: Vec<Warning>,
+    /// Values the host sets from outside (rcalc's `recno`, `outno`).
+    overrides: Vec<(DefId, f64)>,
 }
 
 impl<'m> Evaluator<'m> {
@@ -174,6 +176,16 @@ impl<'m> Evaluator<'m> {
             policy: MathErrors::default(),
             warn_nonconstant: module.folds(),
             warnings: Vec::new(),
+            overrides: Vec::new(),
+        }
+    }
+
+    /// Give a variable's definition a value set by the host, as rcalc's `varset` does
+    /// for `recno` and `outno` each record.
+    pub fn set_value(&mut self, def: DefId, value: f64) {
+        match self.overrides.iter_mut().find(|(d, _)| *d == def) {
+            Some(slot) => slot.1 = value,
+            None => self.overrides.push((def, value)),
         }
     }
 
@@ -308,6 +320,9 @@ impl<'m> Evaluator<'m> {
         else {
             return Err(EvalError::UndefinedVariable(symbol.name.clone()));
         };
+        if let Some(&(_, v)) = self.overrides.iter().find(|(d, _)| *d == id) {
+            return Ok(v);
+        }
         let def = module.def(id);
         if let Node::Num(v) = def.body.node {
             return Ok(v);
