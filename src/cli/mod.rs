@@ -1,5 +1,7 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
+mod calc;
+
 use std::process::ExitCode;
 
 /// A subcommand: its name, a one-line summary for `radc help`, and its entry point
@@ -11,11 +13,18 @@ struct Command {
 }
 
 /// Every subcommand, in the order `radc help` lists them.
-const COMMANDS: &[Command] = &[Command {
-    name: "help",
-    summary: "list the commands",
-    run: help,
-}];
+const COMMANDS: &[Command] = &[
+    Command {
+        name: "help",
+        summary: "list the commands",
+        run: help,
+    },
+    Command {
+        name: "calc",
+        summary: "evaluate calcomp expressions over records (rcalc-compatible)",
+        run: calc::run,
+    },
+];
 
 pub const USAGE_ERROR: u8 = 2;
 

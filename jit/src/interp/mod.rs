@@ -52,6 +52,7 @@ pub struct Interpreter<'m> {
     outno: Option<DefId>,
     nrecs: u64,
     nout: u64,
+    partial: Outputs,
 }
 
 impl<'m> Interpreter<'m> {
@@ -86,6 +87,7 @@ impl<'m> Interpreter<'m> {
             outno: var("outno"),
             nrecs: 0,
             nout: 0,
+            partial: Vec::new(),
         })
     }
 
@@ -118,9 +120,21 @@ impl<'m> Interpreter<'m> {
     fn outputs(&mut self, input: &mut dyn radc_lang::cal::eval::Input) -> Result<Outputs, Error> {
         let mut out = Vec::with_capacity(self.module.outputs().len());
         for (chan, o) in self.module.outputs() {
-            out.push((*chan, self.ev.eval_top(&o.body, input)?));
+            match self.ev.eval_top(&o.body, input) {
+                Ok(v) => out.push((*chan, v)),
+                Err(e) => {
+                    self.partial = out;
+                    return Err(e.into());
+                }
+            }
         }
         Ok(out)
+    }
+
+    /// The columns of a failed record computed before the error: rcalc has printed
+    /// them by the time it stops.
+    pub fn take_partial(&mut self) -> Outputs {
+        std::mem::take(&mut self.partial)
     }
 
     /// Warnings raised since the last call, in order (rcalc prints them as they come).

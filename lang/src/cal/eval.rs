@@ -502,7 +502,8 @@ impl<'m> Evaluator<'m> {
             Builtin::Select => {
                 let a1 = self.argument(act, 1, input)?;
                 let n = c_round(a1);
-                if a1 < -0.5 || n >= nargs as i64 {
+                // A NaN index is a domain error in the reference rcalc.
+                if a1.is_nan() || a1 < -0.5 || n >= nargs as i64 {
                     self.errno = Some(Errno::Domain);
                     0.0
                 } else if n == 0 {
@@ -511,19 +512,23 @@ impl<'m> Evaluator<'m> {
                     self.argument(act, n as u32 + 1, input)?
                 }
             }
-            // The first argument, then the others from last to second.
+            // The first argument, then the others from last to second. The reference
+            // rcalc keeps the running value only when it strictly wins and otherwise
+            // takes the new one (an SSE `maxsd`/`minsd`), so a NaN anywhere but last
+            // is replaced: max(nan, 5) is 5 while max(5, nan) is nan, and
+            // max(-0, 0) is 0 while max(0, -0) is -0. Checked against rcalc.
             Builtin::Max | Builtin::Min => {
                 let mut best = self.argument(act, 1, input)?;
                 let mut n = nargs;
                 while n > 1 {
                     let v = self.argument(act, n as u32, input)?;
                     n -= 1;
-                    let better = if b == Builtin::Max {
-                        best < v
-                    } else {
+                    let keep = if b == Builtin::Max {
                         best > v
+                    } else {
+                        best < v
                     };
-                    if better {
+                    if !keep {
                         best = v;
                     }
                 }

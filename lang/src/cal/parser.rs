@@ -295,7 +295,9 @@ fn syntax_diagnostic(
 ) -> Diagnostic {
     let s = e.span();
     let found = match e.found() {
-        Some(t) => t.to_string(),
+        Some(Token::Number(n)) => format!("the number {n}"),
+        Some(Token::Name(n)) => format!("the name '{n}'"),
+        Some(t) => format!("'{t}'"),
         None => "the end of the statement".to_string(),
     };
     let mut expected: Vec<String> = e.expected().map(|x| x.to_string()).collect();
