@@ -14,3 +14,7 @@ pub mod ir;
 pub mod resolve;
 
 pub use resolve::{Env, Host, Module};
+pub mod check;
+pub mod deps;
+
+pub use check::{check, check_with_entries};

@@ -40,6 +40,10 @@ pub struct Env {
     /// renderer always does. Folding changes results in the last bits
     /// (`x/3` becomes `x*(1/3)`), so it must match the program being reproduced.
     pub fold: bool,
+    /// All the program's sources are loaded (an `rcalc -e` program, a primitive with
+    /// its function files): a name defined nowhere is an error. Otherwise the text is
+    /// a library whose free names its user supplies, and they are only noted.
+    pub complete: bool,
 }
 
 impl Env {
@@ -47,18 +51,29 @@ impl Env {
         Env {
             host: Host::Rcalc,
             fold: true,
+            complete: false,
         }
     }
     pub fn renderer() -> Self {
         Env {
             host: Host::Renderer,
             fold: true,
+            complete: false,
         }
     }
+    /// The same environment, for a program whose sources are all loaded.
+    pub fn complete(self) -> Self {
+        Env {
+            complete: true,
+            ..self
+        }
+    }
+
     pub fn bare() -> Self {
         Env {
             host: Host::Bare,
             fold: true,
+            complete: false,
         }
     }
 }
@@ -68,6 +83,8 @@ impl Env {
 pub struct HostName {
     /// Parameters, for a function.
     pub arity: Option<usize>,
+    /// Defined with `:` (so usable in other constants).
+    pub constant: bool,
 }
 
 /// A whole calcomp program: every definition made so far, in order.
@@ -106,10 +123,10 @@ impl Module {
                 }
                 m.define_ray_channels();
                 for v in RENDERER_VARIABLES.iter().skip(RAY_CHANNELS.len()) {
-                    m.declare_host_name(v, None);
+                    m.declare_host_name(v, None, false);
                 }
-                for (name, arity) in RAYINIT_NAMES {
-                    m.declare_host_name(name, *arity);
+                for (name, arity, constant) in RAYINIT_NAMES {
+                    m.declare_host_name(name, *arity, *constant);
                 }
             }
         }
@@ -162,9 +179,9 @@ impl Module {
 
     /// A name the host provides without a visible definition (the renderer's
     /// per-shading variables, rayinit.cal when its text is not at hand).
-    pub fn declare_host_name(&mut self, name: &str, arity: Option<usize>) {
+    pub fn declare_host_name(&mut self, name: &str, arity: Option<usize>, constant: bool) {
         let sym = self.insert_qualified(name.to_string());
-        self.host_names.insert(sym, HostName { arity });
+        self.host_names.insert(sym, HostName { arity, constant });
     }
 
     pub fn host_name(&self, sym: SymId) -> Option<HostName> {

@@ -61,6 +61,7 @@ codes! {
     W0602 = "W0602" "cal-nonconstant-constant" Warning: "A ':' definition depends on a value that changes per record or ray.";
     W0603 = "W0603" "cal-unused" Warning: "A definition is never used by any output or other definition.";
     W0604 = "W0604" "cal-hides-library" Warning: "A definition replaces a built-in library function.";
+    W0606 = "W0606" "cal-free-name" Warning: "A name is used but not defined in this file; whatever loads the file must define it.";
     W0605 = "W0605" "cal-extra-arguments" Warning: "A call passes more arguments than the function uses; Radiance ignores the extra ones.";
     E0701 = "E0701" "cal-undefined-at-run-time" Error: "Evaluation reached a name that is not defined.";
     E0702 = "E0702" "cal-missing-argument" Error: "Evaluation used a function argument the call did not pass.";
