@@ -1,5 +1,6 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
+mod calc;
 mod check;
 mod doc;
 mod expand;
@@ -41,6 +42,11 @@ const COMMANDS: &[Command] = &[
         name: "help",
         summary: "list the commands",
         run: help,
+    },
+    Command {
+        name: "calc",
+        summary: "evaluate calcomp expressions over records (rcalc-compatible)",
+        run: calc::run,
     },
     Command {
         name: "genbox",

@@ -58,6 +58,25 @@ codes! {
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";
+    // --- calcomp ---------------------------------------------------------------------
+    E0501 = "E0501" "cal-syntax" Error: "The calcomp text does not follow the grammar Radiance's parser accepts.";
+    E0502 = "E0502" "cal-bad-parameter" Error: "A function parameter name is not allowed (it holds a context mark).";
+    E0601 = "E0601" "cal-undefined-name" Error: "A variable or function is used but defined nowhere Radiance would look.";
+    E0602 = "E0602" "cal-wrong-arity" Error: "A function is called with fewer arguments than its definition uses.";
+    E0603 = "E0603" "cal-not-a-function" Error: "A variable is called like a function, or a function is used as a variable.";
+    E0604 = "E0604" "cal-bad-constant" Error: "A constant expression divides by zero or leaves a function's domain (Radiance: 'bad constant expression').";
+    W0601 = "W0601" "cal-redefined" Warning: "A name is defined again; the later definition replaces the earlier one.";
+    W0602 = "W0602" "cal-nonconstant-constant" Warning: "A ':' definition depends on a value that changes per record or ray.";
+    W0603 = "W0603" "cal-unused" Warning: "A definition is never used by any output or other definition.";
+    W0604 = "W0604" "cal-hides-library" Warning: "A definition replaces a built-in library function.";
+    W0606 = "W0606" "cal-free-name" Warning: "A name is used but not defined in this file; whatever loads the file must define it.";
+    W0605 = "W0605" "cal-extra-arguments" Warning: "A call passes more arguments than the function uses; Radiance ignores the extra ones.";
+    E0701 = "E0701" "cal-undefined-at-run-time" Error: "Evaluation reached a name that is not defined.";
+    E0702 = "E0702" "cal-missing-argument" Error: "Evaluation used a function argument the call did not pass.";
+    E0703 = "E0703" "cal-no-input" Error: "An input column was read where there is no input (rcalc -n).";
+    E0704 = "E0704" "cal-argument-not-function" Error: "A function parameter used as a function was passed a value, not a function name.";
+    W0701 = "W0701" "cal-division-by-zero" Warning: "A division by zero was evaluated; Radiance yields 0.";
+    W0702 = "W0702" "cal-domain-error" Warning: "A library function or power was evaluated outside its domain or range; Radiance yields 0.";
     // --- transforms, generators and '!' commands -----------------------------------
     E0801 = "E0801" "unknown-transform-option" Error: "A word in a transform is not one of -t -rx -ry -rz -s -mx -my -mz -i.";
     E0802 = "E0802" "bad-transform-argument" Error: "A transform option is missing an argument, or an argument is not a number.";
