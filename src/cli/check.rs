@@ -15,7 +15,7 @@ use radc_lang::schema::FileKind;
 use radc_lang::{Diagnostic, FileId, Severity};
 
 use super::USAGE_ERROR;
-use super::expand::Commands;
+use super::expand::{Commands, PendingSources};
 use super::report::{self, Format, Sources};
 
 const USAGE: &str =
@@ -176,10 +176,12 @@ fn check_scene(
             warn_unused: *warn_unused,
         })
         .collect();
-    let commands = Commands::new(dirs.clone(), sources_len(sources), allow_commands);
-    let lookup = SearchPath::new(dirs);
+    let pending = PendingSources::new(sources_len(sources));
+    let commands = Commands::new(dirs.clone(), &pending, allow_commands);
+    let lookup = SearchPath::new(dirs, &pending);
     let (_scene, more) = scene::lower_with(&inputs, &lookup, &commands);
-    for (name, text) in commands.into_sources() {
+    drop((commands, lookup));
+    for (name, text) in pending.into_sources() {
         sources.add(name, text);
     }
     diags.extend(more);
@@ -196,24 +198,26 @@ fn sources_len(sources: &Sources) -> u32 {
 /// Finds auxiliary files as Radiance does, plus the scene's own folder: absolute
 /// paths as they are; otherwise the folder of the scene file that names it, the
 /// current folder, then each folder of RAYPATH.
-struct SearchPath {
+struct SearchPath<'a> {
     scene_dirs: Vec<(FileId, PathBuf)>,
     raypath: Vec<PathBuf>,
+    pending: &'a PendingSources,
 }
 
-impl SearchPath {
-    fn new(scene_dirs: Vec<(FileId, PathBuf)>) -> Self {
+impl<'a> SearchPath<'a> {
+    fn new(scene_dirs: Vec<(FileId, PathBuf)>, pending: &'a PendingSources) -> Self {
         let raypath = std::env::var_os("RAYPATH")
             .map(|v| std::env::split_paths(&v).collect())
             .unwrap_or_default();
         SearchPath {
             scene_dirs,
             raypath,
+            pending,
         }
     }
 }
 
-impl SearchPath {
+impl SearchPath<'_> {
     fn find(&self, name: &str, from: FileId) -> Option<PathBuf> {
         let p = Path::new(name);
         if p.is_absolute() {
@@ -223,7 +227,8 @@ impl SearchPath {
             .scene_dirs
             .iter()
             .find(|(f, _)| *f == from)
-            .map(|(_, d)| d.clone());
+            .map(|(_, d)| d.clone())
+            .or_else(|| self.pending.dir_of(from));
         scene_dir
             .into_iter()
             .chain(std::iter::once(PathBuf::from(".")))
@@ -236,7 +241,7 @@ impl SearchPath {
 /// Auxiliary files larger than this are not read for content checks.
 const MAX_AUX_FILE: u64 = 64 << 20;
 
-impl FileLookup for SearchPath {
+impl FileLookup for SearchPath<'_> {
     fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
         self.find(name, from).is_some()
     }
@@ -248,6 +253,15 @@ impl FileLookup for SearchPath {
         }
         let bytes = std::fs::read(path).ok()?;
         Some(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    fn load(&self, name: &str, kind: FileKind, from: FileId) -> Option<(FileId, String)> {
+        let text = self.read(name, kind, from)?;
+        let dir = self
+            .find(name, from)
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+            .unwrap_or_default();
+        Some((self.pending.add(name.to_string(), text.clone(), dir), text))
     }
 
     fn read_head(&self, name: &str, _kind: FileKind, from: FileId, max: usize) -> Option<Vec<u8>> {

@@ -14,44 +14,70 @@ use radc_lang::scene::{CommandExpander, Expansion};
 /// Words that make a command line more than a program and its arguments.
 const SHELL_SYNTAX: &[char] = &['|', '&', ';', '<', '>', '(', ')', '$', '`', '*', '?', '\\'];
 
-pub struct Commands {
-    /// The folder of each scene file, so relative names resolve from the scene.
-    scene_dirs: Vec<(FileId, PathBuf)>,
-    allow_commands: bool,
-    /// The id the first expansion gets: expansions are numbered after the sources
-    /// already read.
+/// Files a check reads beyond the scenes named on the command line (command
+/// outputs, function files), numbered after the sources already read so diagnostics
+/// can point into them. Shared by the command expander and the file lookup.
+pub struct PendingSources {
     first_id: u32,
-    /// (display name, text, folder) of each expansion, in id order.
-    expanded: RefCell<Vec<(String, String, PathBuf)>>,
+    /// (display name, text, folder) in id order.
+    files: RefCell<Vec<(String, String, PathBuf)>>,
 }
 
-impl Commands {
-    pub fn new(scene_dirs: Vec<(FileId, PathBuf)>, first_id: u32, allow_commands: bool) -> Self {
-        Commands {
-            scene_dirs,
-            allow_commands,
+impl PendingSources {
+    pub fn new(first_id: u32) -> Self {
+        PendingSources {
             first_id,
-            expanded: RefCell::new(Vec::new()),
+            files: RefCell::new(Vec::new()),
         }
     }
 
-    /// The expansions made, as (display name, text), in file-id order from `first_id`.
+    pub fn add(&self, name: String, text: String, dir: PathBuf) -> FileId {
+        let mut files = self.files.borrow_mut();
+        files.push((name, text, dir));
+        FileId(self.first_id + files.len() as u32 - 1)
+    }
+
+    /// The folder a pending file's relative names resolve from.
+    pub fn dir_of(&self, file: FileId) -> Option<PathBuf> {
+        let index = file.0.checked_sub(self.first_id)?;
+        self.files.borrow().get(index as usize).map(|e| e.2.clone())
+    }
+
+    /// The files, as (display name, text), in id order.
     pub fn into_sources(self) -> Vec<(String, String)> {
-        self.expanded
+        self.files
             .into_inner()
             .into_iter()
             .map(|(name, text, _)| (name, text))
             .collect()
+    }
+}
+
+pub struct Commands<'a> {
+    /// The folder of each scene file, so relative names resolve from the scene.
+    scene_dirs: Vec<(FileId, PathBuf)>,
+    allow_commands: bool,
+    pending: &'a PendingSources,
+}
+
+impl<'a> Commands<'a> {
+    pub fn new(
+        scene_dirs: Vec<(FileId, PathBuf)>,
+        pending: &'a PendingSources,
+        allow_commands: bool,
+    ) -> Self {
+        Commands {
+            scene_dirs,
+            allow_commands,
+            pending,
+        }
     }
 
     fn dir_of(&self, file: FileId) -> PathBuf {
         if let Some((_, d)) = self.scene_dirs.iter().find(|(f, _)| *f == file) {
             return d.clone();
         }
-        let index = file.0.checked_sub(self.first_id);
-        index
-            .and_then(|i| self.expanded.borrow().get(i as usize).map(|e| e.2.clone()))
-            .unwrap_or_default()
+        self.pending.dir_of(file).unwrap_or_default()
     }
 
     /// Runs a command line: a pipeline of built-in generators (`genbox ... | xform
@@ -132,14 +158,12 @@ fn failed(program: &str, e: GenError) -> Expansion {
     }
 }
 
-impl CommandExpander for Commands {
+impl CommandExpander for Commands<'_> {
     fn expand(&self, command: &str, from: FileId, _depth: u32) -> Expansion {
         let dir = self.dir_of(from);
         match self.run(command, &dir) {
             Ok(text) => {
-                let mut expanded = self.expanded.borrow_mut();
-                let file = FileId(self.first_id + expanded.len() as u32);
-                expanded.push((format!("!{command}"), text.clone(), dir));
+                let file = self.pending.add(format!("!{command}"), text.clone(), dir);
                 Expansion::Text { file, text }
             }
             Err(e) => e,

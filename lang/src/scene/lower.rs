@@ -10,6 +10,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::command::{CommandExpander, Expansion, MAX_DEPTH, NoCommands};
+use super::functions::{self, FunctionFile};
 use super::ir::{ModRef, Prim, PrimId, PrimKind, Rgb, Scene, Vec3};
 use super::syntax::{Alias, Command, Item, Primitive, SceneFile, Word};
 use crate::diagnostic::{self as codes, Diagnostic, suggest};
@@ -37,6 +38,12 @@ pub trait FileLookup {
         _from: FileId,
         _max: usize,
     ) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// A file to check in its own right (a function file), registered as a source so
+    /// diagnostics can point into it. `None` skips those checks.
+    fn load(&self, _name: &str, _kind: FileKind, _from: FileId) -> Option<(FileId, String)> {
         None
     }
 }
@@ -81,6 +88,7 @@ pub fn lower_with(
         files,
         commands,
         deferred: Vec::new(),
+        function_files: HashMap::new(),
     };
     for input in inputs {
         cx.items(&input.syntax.items, input.warn_unused, 0);
@@ -108,6 +116,8 @@ struct Lowering<'a> {
     /// checked when a ray first hits them, sources when they are set up), by the index
     /// of the diagnostic. Judged once the whole scene is known.
     deferred: Vec<(Deferred, usize)>,
+    /// Function files loaded so far, by name as written (`None`: could not be loaded).
+    function_files: HashMap<String, Option<FunctionFile>>,
 }
 
 #[derive(Clone, Copy)]
@@ -209,6 +219,7 @@ impl Lowering<'_> {
             self.check_values(p, schema);
             self.check_files(p, schema);
             self.check_data_coordinates(p, schema);
+            self.check_functions(p, schema);
         }
         let refs = if counts_ok {
             self.string_modifier_refs(p, schema)
@@ -702,6 +713,82 @@ impl Lowering<'_> {
                 Transform::IDENTITY
             }
         }
+    }
+
+    /// The functions and variables a primitive names must exist in its function file
+    /// (or rayinit.cal, or the renderer), and what they reach when evaluated must be
+    /// defined too; the file itself must parse. Radiance finds these only when a ray
+    /// first evaluates the primitive.
+    fn check_functions(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
+        let kinds: Vec<Option<StringKind>> = (0..words.len())
+            .map(|i| schema.strings.arg_in(i, &words).map(|(a, _)| a.kind))
+            .collect();
+        let uses_functions = kinds
+            .iter()
+            .any(|k| matches!(k, Some(StringKind::Function | StringKind::FunctionName)));
+        if !uses_functions {
+            return;
+        }
+        let cal = p
+            .strings
+            .items
+            .iter()
+            .zip(&kinds)
+            .find(|(_, k)| **k == Some(StringKind::File(FileKind::Cal)))
+            .map(|(w, _)| w);
+        let key = cal.map_or(".", |w| w.text.as_str()).to_string();
+        if !self.function_files.contains_key(&key) {
+            let loaded = match cal {
+                Some(w) if w.text != "." => self
+                    .files
+                    .load(&w.text, FileKind::Cal, w.span.file)
+                    .map(|(file, text)| (FunctionFile::load(file, &w.text, &text), w.span)),
+                _ => Some((FunctionFile::load(FileId(u32::MAX), ".", ""), p.kind.span)),
+            };
+            if let Some((ff, user)) = &loaded {
+                for e in &ff.errors {
+                    self.diags
+                        .push(e.clone().with_label(*user, "loaded by this primitive"));
+                }
+            }
+            self.function_files
+                .insert(key.clone(), loaded.map(|(ff, _)| ff));
+        }
+        let Some(Some(ff)) = self.function_files.get(&key) else {
+            return;
+        };
+        if !ff.errors.is_empty() {
+            return;
+        }
+        let mut found = Vec::new();
+        for (w, k) in p.strings.items.iter().zip(&kinds) {
+            if !matches!(k, Some(StringKind::Function | StringKind::FunctionName))
+                || !functions::is_plain_name(&w.text)
+            {
+                continue;
+            }
+            if !ff.defines(&w.text) {
+                let known = ff.module.known_names();
+                found.push(functions::undefined_in_file(&w.text, &key, w.span, &known));
+                continue;
+            }
+            for (name, span) in ff.undefined_reached_from(&w.text) {
+                found.push(
+                    Diagnostic::new(
+                        codes::E0601,
+                        span,
+                        format!(
+                            "'{name}' is not defined, but evaluating '{}' reaches it",
+                            w.text
+                        ),
+                    )
+                    .with_label(w.span, "evaluated for this primitive")
+                    .with_hint("define it in the function file (or one loaded before it)"),
+                );
+            }
+        }
+        self.diags.extend(found);
     }
 
     /// A data-driven type needs one coordinate function per dimension of its data

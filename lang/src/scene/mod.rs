@@ -1,6 +1,7 @@
 //! Scene files (`.rad`, `.mat`): lexing, parsing, lowering to the typed IR and checks.
 
 pub mod command;
+pub mod functions;
 pub mod ir;
 pub mod lexer;
 pub mod lower;
