@@ -85,8 +85,14 @@ pub fn run(args: &[String]) -> ExitCode {
             collect_scenes(path, &mut found);
             found.sort();
             for f in found {
-                check_scene(&[f], opts.allow_commands, &mut sources, &mut diags);
+                if is_cal(&f) {
+                    check_cal(&f, &mut sources, &mut diags);
+                } else {
+                    check_scene(&[f], opts.allow_commands, &mut sources, &mut diags);
+                }
             }
+        } else if is_cal(path) {
+            check_cal(path, &mut sources, &mut diags);
         } else {
             scene_files.push(path.clone());
         }
@@ -127,10 +133,52 @@ fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {
         let p = e.path();
         if p.is_dir() {
             collect_scenes(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rad") {
+        } else if p.extension().is_some_and(|x| x == "rad" || x == "cal") {
             out.push(p);
         }
     }
+}
+
+fn is_cal(path: &Path) -> bool {
+    path.extension().is_some_and(|x| x == "cal")
+}
+
+/// Checks a calcomp file on its own. Names it leaves to its users (a scene, an rcalc
+/// command line) are noted, not errors.
+fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
+    let name = path.display().to_string();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            let file = sources.add(name.clone(), String::new());
+            diags.push(Diagnostic::new(
+                radc_lang::diagnostic::E0305,
+                radc_lang::Span::new(file, 0..0),
+                format!("cannot read '{name}': {e}"),
+            ));
+            return;
+        }
+    };
+    let file = FileId(sources_len(sources));
+    let (text, found) = radc_lang::source::decode(file, &bytes);
+    diags.extend(found);
+    // A file is either for the renderer (ray variables, rayinit.cal) or for rcalc and
+    // the generators (`$N`, `Px(i)` user functions are fine there): judge it as the
+    // one it fits, preferring the renderer.
+    let errors = |d: &Vec<Diagnostic>| d.iter().filter(|d| d.is_error()).count();
+    let renderer = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::renderer());
+    let found = if errors(&renderer) > 0 {
+        let rcalc = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::rcalc());
+        if errors(&rcalc) < errors(&renderer) {
+            rcalc
+        } else {
+            renderer
+        }
+    } else {
+        renderer
+    };
+    diags.extend(found);
+    sources.add(name, text);
 }
 
 /// Reads, parses and lowers `paths` in order as one scene.

@@ -85,7 +85,9 @@ pub fn undefined_in_file(name: &str, file: &str, span: Span, known: &[&str]) -> 
         format!("'{name}' is not defined in '{file}' (nor by rayinit.cal or the renderer)")
     };
     let mut d = Diagnostic::new(codes::E0601, span, message);
-    if let Some(s) = codes::suggest(name, known.iter().copied()) {
+    // Names defined in a function file are qualified by its context (`name`file`).
+    let plain = known.iter().map(|k| k.split('`').next().unwrap_or(k));
+    if let Some(s) = codes::suggest(name, plain) {
         d = d.with_hint(format!("did you mean '{s}'?"));
     }
     d
