@@ -4,6 +4,7 @@
 //! spawns a process: the CLI and the language server are the only places that touch
 //! the outside world, so both see exactly the same diagnostics.
 
+pub mod db;
 pub mod diagnostic;
 pub mod scene;
 pub mod schema;

@@ -170,8 +170,14 @@ pub fn decode(file: FileId, bytes: &[u8]) -> (String, Vec<crate::Diagnostic>) {
     }
     if let Some(at) = text.find('\0') {
         diags.push(
-            Diagnostic::new(codes::E0108, Span::new(file, at..at + 1), "the file contains a NUL byte")
-                .with_hint("Radiance stops reading a word at a NUL; remove it (is this a binary file?)"),
+            Diagnostic::new(
+                codes::E0108,
+                Span::new(file, at..at + 1),
+                "the file contains a NUL byte",
+            )
+            .with_hint(
+                "Radiance stops reading a word at a NUL; remove it (is this a binary file?)",
+            ),
         );
         text = text.replace('\0', " ");
     }

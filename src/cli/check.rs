@@ -16,7 +16,8 @@ use radc_lang::{Diagnostic, FileId, Severity};
 use super::USAGE_ERROR;
 use super::report::{self, Format, Sources};
 
-const USAGE: &str = "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
+const USAGE: &str =
+    "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
 
 struct Options {
     format: Format,
@@ -90,7 +91,10 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
-    let errors = diags.iter().filter(|d| d.severity == Severity::Error).count();
+    let errors = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
     let warnings = diags.len() - errors;
     if opts.format == Format::Human && !opts.quiet {
         println!(

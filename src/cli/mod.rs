@@ -52,7 +52,10 @@ pub fn dispatch(args: &[String]) -> ExitCode {
 }
 
 fn help(_: &[String]) -> ExitCode {
-    println!("radc {}: a toolchain for the RADIANCE languages\n", env!("CARGO_PKG_VERSION"));
+    println!(
+        "radc {}: a toolchain for the RADIANCE languages\n",
+        env!("CARGO_PKG_VERSION")
+    );
     println!("usage: radc <command> [options]\n\ncommands:");
     for c in COMMANDS {
         println!("  {:<10} {}", c.name, c.summary);

@@ -130,7 +130,13 @@ fn human(d: &Diagnostic, sources: &Sources, color: bool, out: &mut impl Write) {
     let cache = (name, Source::from(src.text.as_str()));
     if report.finish().write(cache, &mut *out).is_err() {
         let (line, col) = src.lines.line_col(&src.text, d.span.start as usize);
-        let _ = writeln!(out, "{name}:{line}:{col}: {}[{}]: {}", severity_word(d), d.code.id, d.message);
+        let _ = writeln!(
+            out,
+            "{name}:{line}:{col}: {}[{}]: {}",
+            severity_word(d),
+            d.code.id,
+            d.message
+        );
     }
 }
 

@@ -131,7 +131,11 @@ mod tests {
         let mut seen = std::collections::HashSet::new();
         for c in ALL_CODES {
             assert!(seen.insert(c.id), "duplicate code {}", c.id);
-            let prefix = if c.severity == Severity::Error { 'E' } else { 'W' };
+            let prefix = if c.severity == Severity::Error {
+                'E'
+            } else {
+                'W'
+            };
             assert!(c.id.starts_with(prefix), "{} has the wrong prefix", c.id);
             assert_eq!(c.id.len(), 5, "{}", c.id);
         }

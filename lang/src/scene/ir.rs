@@ -50,35 +50,123 @@ impl Prim {
 #[derive(Clone, Debug, PartialEq)]
 pub enum PrimKind {
     // --- surfaces -----------------------------------------------------------------
-    Source { direction: Vec3, angle: f64 },
-    Sphere { center: Vec3, radius: f64 },
+    Source {
+        direction: Vec3,
+        angle: f64,
+    },
+    Sphere {
+        center: Vec3,
+        radius: f64,
+    },
     /// A sphere with inward normals (also what a negative-radius sphere is).
-    Bubble { center: Vec3, radius: f64 },
-    Polygon { vertices: Vec<Vec3> },
-    Cone { p0: Vec3, p1: Vec3, r0: f64, r1: f64 },
-    Cup { p0: Vec3, p1: Vec3, r0: f64, r1: f64 },
-    Cylinder { p0: Vec3, p1: Vec3, radius: f64 },
-    Tube { p0: Vec3, p1: Vec3, radius: f64 },
-    Ring { center: Vec3, normal: Vec3, r0: f64, r1: f64 },
-    Instance { octree: String, transform: Vec<String> },
-    Mesh { file: String, transform: Vec<String> },
+    Bubble {
+        center: Vec3,
+        radius: f64,
+    },
+    Polygon {
+        vertices: Vec<Vec3>,
+    },
+    Cone {
+        p0: Vec3,
+        p1: Vec3,
+        r0: f64,
+        r1: f64,
+    },
+    Cup {
+        p0: Vec3,
+        p1: Vec3,
+        r0: f64,
+        r1: f64,
+    },
+    Cylinder {
+        p0: Vec3,
+        p1: Vec3,
+        radius: f64,
+    },
+    Tube {
+        p0: Vec3,
+        p1: Vec3,
+        radius: f64,
+    },
+    Ring {
+        center: Vec3,
+        normal: Vec3,
+        r0: f64,
+        r1: f64,
+    },
+    Instance {
+        octree: String,
+        transform: Vec<String>,
+    },
+    Mesh {
+        file: String,
+        transform: Vec<String>,
+    },
     // --- materials ----------------------------------------------------------------
-    Light { color: Rgb },
-    Illum { alternate: Option<String>, color: Rgb },
-    Glow { color: Rgb, max_radius: f64 },
-    Spotlight { color: Rgb, angle: f64, direction: Vec3 },
-    Mirror { alternate: Option<String>, color: Rgb },
-    Plastic { color: Rgb, spec: f64, rough: f64 },
-    Metal { color: Rgb, spec: f64, rough: f64 },
-    Trans { color: Rgb, spec: f64, rough: f64, trans: f64, tspec: f64 },
-    Glass { transmission: Rgb, index: f64 },
-    Dielectric { transmission: Rgb, index: f64, hartmann: f64 },
-    Interface { t1: Rgb, n1: f64, t2: Rgb, n2: f64 },
-    Antimatter { modifiers: Vec<String> },
+    Light {
+        color: Rgb,
+    },
+    Illum {
+        alternate: Option<String>,
+        color: Rgb,
+    },
+    Glow {
+        color: Rgb,
+        max_radius: f64,
+    },
+    Spotlight {
+        color: Rgb,
+        angle: f64,
+        direction: Vec3,
+    },
+    Mirror {
+        alternate: Option<String>,
+        color: Rgb,
+    },
+    Plastic {
+        color: Rgb,
+        spec: f64,
+        rough: f64,
+    },
+    Metal {
+        color: Rgb,
+        spec: f64,
+        rough: f64,
+    },
+    Trans {
+        color: Rgb,
+        spec: f64,
+        rough: f64,
+        trans: f64,
+        tspec: f64,
+    },
+    Glass {
+        transmission: Rgb,
+        index: f64,
+    },
+    Dielectric {
+        transmission: Rgb,
+        index: f64,
+        hartmann: f64,
+    },
+    Interface {
+        t1: Rgb,
+        n1: f64,
+        t2: Rgb,
+        n2: f64,
+    },
+    Antimatter {
+        modifiers: Vec<String>,
+    },
     /// `alias`: a new name for `target` (already resolved).
-    Alias { target: PrimId },
+    Alias {
+        target: PrimId,
+    },
     /// Every other type: the raw arguments, interpreted through the schema.
-    Other { strings: Vec<String>, reals: Vec<f64> },
+    Other {
+        strings: Vec<String>,
+        reals: Vec<f64>,
+    },
 }
 
 /// A lowered scene: primitives in file order.

@@ -291,7 +291,10 @@ impl Lowering<'_> {
         let mut d = Diagnostic::new(
             codes::E0303,
             a.target.span,
-            format!("alias '{}' refers to '{name}', which is not defined before it", a.name.text),
+            format!(
+                "alias '{}' refers to '{name}', which is not defined before it",
+                a.name.text
+            ),
         );
         if let Some(s) = suggest(name, self.modifiers.keys().map(String::as_str)) {
             d = d.with_hint(format!("did you mean '{s}'?"));
@@ -303,7 +306,12 @@ impl Lowering<'_> {
     fn check_counts(&mut self, p: &Primitive, schema: &PrimitiveType) -> bool {
         let mut ok = true;
         for (what, list, n, span) in [
-            ("string", schema.strings, p.strings.len(), p.strings.count_span),
+            (
+                "string",
+                schema.strings,
+                p.strings.len(),
+                p.strings.count_span,
+            ),
             ("real", schema.reals, p.reals.len(), p.reals.count_span),
         ] {
             let n = u32::try_from(n).unwrap_or(u32::MAX);
@@ -319,10 +327,17 @@ impl Lowering<'_> {
                         "{} takes {} {what} argument{}, found {n}",
                         schema.name,
                         list.count.describe(),
-                        if list.count == schema::Count::Exactly(1) { "" } else { "s" },
+                        if list.count == schema::Count::Exactly(1) {
+                            ""
+                        } else {
+                            "s"
+                        },
                     ),
                 )
-                .with_label(p.kind.span, format!("{} {}", schema.category.as_str(), schema.name))
+                .with_label(
+                    p.kind.span,
+                    format!("{} {}", schema.category.as_str(), schema.name),
+                )
                 .with_hint(layout_hint(schema.name, what, &list)),
             );
         }
@@ -341,7 +356,10 @@ impl Lowering<'_> {
                 self.diags.push(Diagnostic::new(
                     codes::E0203,
                     r.span,
-                    format!("{} of {} '{}' overflows to infinity", arg.name, schema.name, p.name.text),
+                    format!(
+                        "{} of {} '{}' overflows to infinity",
+                        arg.name, schema.name, p.name.text
+                    ),
                 ));
             } else if !geometry && !arg.valid.contains(r.value) {
                 self.diags.push(
@@ -395,15 +413,11 @@ impl Lowering<'_> {
             }
             if !self.files.exists(&w.text, kind, w.span.file) {
                 self.diags.push(
-                    Diagnostic::new(
-                        codes::E0305,
-                        w.span,
-                        format!("file '{}' not found", w.text),
-                    )
-                    .with_hint(
-                        "radc looks in the scene's folder, then each folder of RAYPATH \
+                    Diagnostic::new(codes::E0305, w.span, format!("file '{}' not found", w.text))
+                        .with_hint(
+                            "radc looks in the scene's folder, then each folder of RAYPATH \
                          (Radiance's library is found there when RAYPATH is set)",
-                    ),
+                        ),
                 );
             }
         }
@@ -536,13 +550,20 @@ impl Lowering<'_> {
                 self.check_radius(p, r[3], 3);
                 let (center, radius) = (v3(0), r[3]);
                 if (schema.name == "sphere") == (radius >= 0.0) {
-                    PrimKind::Sphere { center, radius: radius.abs() }
+                    PrimKind::Sphere {
+                        center,
+                        radius: radius.abs(),
+                    }
                 } else {
-                    PrimKind::Bubble { center, radius: radius.abs() }
+                    PrimKind::Bubble {
+                        center,
+                        radius: radius.abs(),
+                    }
                 }
             }
             "polygon" => {
-                let vertices: Vec<Vec3> = values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+                let vertices: Vec<Vec3> =
+                    values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
                 self.check_polygon(p, &vertices);
                 PrimKind::Polygon { vertices }
             }
@@ -551,9 +572,19 @@ impl Lowering<'_> {
                 self.check_axis(p, p0, p1);
                 self.check_cone_radii(p, r0, r1);
                 if (schema.name == "cone") == (r0 >= 0.0 && r1 >= 0.0) {
-                    PrimKind::Cone { p0, p1, r0: r0.abs(), r1: r1.abs() }
+                    PrimKind::Cone {
+                        p0,
+                        p1,
+                        r0: r0.abs(),
+                        r1: r1.abs(),
+                    }
                 } else {
-                    PrimKind::Cup { p0, p1, r0: r0.abs(), r1: r1.abs() }
+                    PrimKind::Cup {
+                        p0,
+                        p1,
+                        r0: r0.abs(),
+                        r1: r1.abs(),
+                    }
                 }
             }
             "cylinder" | "tube" => {
@@ -561,18 +592,35 @@ impl Lowering<'_> {
                 self.check_axis(p, p0, p1);
                 self.check_radius(p, radius, 6);
                 if (schema.name == "cylinder") == (radius >= 0.0) {
-                    PrimKind::Cylinder { p0, p1, radius: radius.abs() }
+                    PrimKind::Cylinder {
+                        p0,
+                        p1,
+                        radius: radius.abs(),
+                    }
                 } else {
-                    PrimKind::Tube { p0, p1, radius: radius.abs() }
+                    PrimKind::Tube {
+                        p0,
+                        p1,
+                        radius: radius.abs(),
+                    }
                 }
             }
             "ring" => {
                 let (center, normal, r0, r1) = (v3(0), v3(3), r[6], r[7]);
                 if norm(normal) == 0.0 {
-                    self.degenerate(p, real_span(p, 3).to(real_span(p, 5)), "its normal is the zero vector");
+                    self.degenerate(
+                        p,
+                        real_span(p, 3).to(real_span(p, 5)),
+                        "its normal is the zero vector",
+                    );
                 }
                 self.check_ring_radii(p, r0, r1);
-                PrimKind::Ring { center, normal, r0: r0.min(r1), r1: r0.max(r1) }
+                PrimKind::Ring {
+                    center,
+                    normal,
+                    r0: r0.min(r1),
+                    r1: r0.max(r1),
+                }
             }
             "instance" => PrimKind::Instance {
                 octree: first_string().unwrap_or_default(),
@@ -583,12 +631,33 @@ impl Lowering<'_> {
                 transform: s.iter().skip(1).cloned().collect(),
             },
             "light" => PrimKind::Light { color: rgb(0) },
-            "illum" => PrimKind::Illum { alternate: first_string(), color: rgb(0) },
-            "glow" => PrimKind::Glow { color: rgb(0), max_radius: r[3] },
-            "spotlight" => PrimKind::Spotlight { color: rgb(0), angle: r[3], direction: v3(4) },
-            "mirror" => PrimKind::Mirror { alternate: first_string(), color: rgb(0) },
-            "plastic" => PrimKind::Plastic { color: rgb(0), spec: r[3], rough: r[4] },
-            "metal" => PrimKind::Metal { color: rgb(0), spec: r[3], rough: r[4] },
+            "illum" => PrimKind::Illum {
+                alternate: first_string(),
+                color: rgb(0),
+            },
+            "glow" => PrimKind::Glow {
+                color: rgb(0),
+                max_radius: r[3],
+            },
+            "spotlight" => PrimKind::Spotlight {
+                color: rgb(0),
+                angle: r[3],
+                direction: v3(4),
+            },
+            "mirror" => PrimKind::Mirror {
+                alternate: first_string(),
+                color: rgb(0),
+            },
+            "plastic" => PrimKind::Plastic {
+                color: rgb(0),
+                spec: r[3],
+                rough: r[4],
+            },
+            "metal" => PrimKind::Metal {
+                color: rgb(0),
+                spec: r[3],
+                rough: r[4],
+            },
             "trans" => PrimKind::Trans {
                 color: rgb(0),
                 spec: r[3],
@@ -601,8 +670,17 @@ impl Lowering<'_> {
                 // Radiance's default index of refraction for glass.
                 index: values.get(3).copied().unwrap_or(1.52),
             },
-            "dielectric" => PrimKind::Dielectric { transmission: rgb(0), index: r[3], hartmann: r[4] },
-            "interface" => PrimKind::Interface { t1: rgb(0), n1: r[3], t2: rgb(4), n2: r[7] },
+            "dielectric" => PrimKind::Dielectric {
+                transmission: rgb(0),
+                index: r[3],
+                hartmann: r[4],
+            },
+            "interface" => PrimKind::Interface {
+                t1: rgb(0),
+                n1: r[3],
+                t2: rgb(4),
+                n2: r[7],
+            },
             "antimatter" => PrimKind::Antimatter { modifiers: s },
             _ => other(p),
         }
@@ -672,7 +750,10 @@ impl Lowering<'_> {
             self.diags.push(Diagnostic::new(
                 codes::W0202,
                 span,
-                format!("negative radii: Radiance reads this {} inside out", p.kind.text),
+                format!(
+                    "negative radii: Radiance reads this {} inside out",
+                    p.kind.text
+                ),
             ));
         }
     }
@@ -698,7 +779,10 @@ impl Lowering<'_> {
                 Diagnostic::new(
                     codes::W0204,
                     span,
-                    format!("polygon '{}' has zero area (its vertices are collinear or coincide)", p.name.text),
+                    format!(
+                        "polygon '{}' has zero area (its vertices are collinear or coincide)",
+                        p.name.text
+                    ),
                 )
                 .with_hint("Radiance drops it with a warning"),
             );
@@ -721,7 +805,11 @@ impl Lowering<'_> {
                 Diagnostic::new(
                     codes::W0203,
                     s,
-                    format!("vertex {} of polygon '{}' is out of the polygon's plane", i + 1, p.name.text),
+                    format!(
+                        "vertex {} of polygon '{}' is out of the polygon's plane",
+                        i + 1,
+                        p.name.text
+                    ),
                 )
                 .with_hint("split the polygon into planar pieces (triangles are always planar)"),
             );

@@ -1,9 +1,11 @@
 //! Scene files (`.rad`, `.mat`): lexing, parsing, lowering to the typed IR and checks.
 
+pub mod format;
 pub mod ir;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
+pub mod scope;
 pub mod syntax;
 
 pub use lower::{AssumeFilesExist, FileLookup, LowerInput, lower};

@@ -162,11 +162,9 @@ fn to_diagnostic(file: FileId, text: &str, e: SyntaxError) -> Diagnostic {
                  arguments and the reals; check the counts",
             )
         }
-        SyntaxErrorKind::Unexpected { found: Some(f) } => Diagnostic::new(
-            codes::E0102,
-            span,
-            format!("unexpected '{f}'"),
-        ),
+        SyntaxErrorKind::Unexpected { found: Some(f) } => {
+            Diagnostic::new(codes::E0102, span, format!("unexpected '{f}'"))
+        }
     }
 }
 
@@ -177,9 +175,9 @@ fn parse_count(s: &str) -> Option<u32> {
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
     }
-    let value: u64 = digits
-        .bytes()
-        .fold(0u64, |acc, b| acc.saturating_mul(10).saturating_add(u64::from(b - b'0')));
+    let value: u64 = digits.bytes().fold(0u64, |acc, b| {
+        acc.saturating_mul(10).saturating_add(u64::from(b - b'0'))
+    });
     if s.starts_with('-') && value != 0 {
         return None;
     }
@@ -272,7 +270,10 @@ where
             SimpleSpan::from(span.start..span.start + 1),
             codes::E0106,
             "this quote is never closed".into(),
-            Some("add the closing quote; Radiance would read the rest of the file as one word".into()),
+            Some(
+                "add the closing quote; Radiance would read the rest of the file as one word"
+                    .into(),
+            ),
         )),
     })
 }
@@ -287,16 +288,21 @@ where
     T: 'src,
 {
     let count = word().try_map(move |w: Word, span| {
-        parse_count(&w.text).map(|n| CountCtx { n, span: w.span }).ok_or_else(|| {
-            SyntaxError::custom(
-                span,
-                codes::E0103,
-                format!("expected the number of {what} arguments, found '{}'", w.text),
-                Some(format!(
-                    "the {what} count must be a whole number >= 0 (Radiance rejects '5.0')"
-                )),
-            )
-        })
+        parse_count(&w.text)
+            .map(|n| CountCtx { n, span: w.span })
+            .ok_or_else(|| {
+                SyntaxError::custom(
+                    span,
+                    codes::E0103,
+                    format!(
+                        "expected the number of {what} arguments, found '{}'",
+                        w.text
+                    ),
+                    Some(format!(
+                        "the {what} count must be a whole number >= 0 (Radiance rejects '5.0')"
+                    )),
+                )
+            })
     });
     count
         .then_with_ctx(
@@ -321,25 +327,27 @@ fn real<'src, I>() -> impl Parser<'src, I, Real, Extra<'src, CountCtx>> + Clone
 where
     I: ValueInput<'src, Token = Token<'src>, Span = SimpleSpan>,
 {
-    word().try_map_with(|w: Word, e: &mut MapExtra<'src, '_, I, Extra<'src, CountCtx>>| {
-        let n = e.ctx().n;
-        parse_real(&w.text)
-            .map(|value| Real {
-                value,
-                span: w.span,
-            })
-            .ok_or_else(|| {
-                SyntaxError::custom(
-                    e.span(),
-                    codes::E0104,
-                    format!("'{}' is not a number", w.text),
-                    Some(format!(
-                        "the real-argument count says {n}; reals are written like 1, -0.5, \
+    word().try_map_with(
+        |w: Word, e: &mut MapExtra<'src, '_, I, Extra<'src, CountCtx>>| {
+            let n = e.ctx().n;
+            parse_real(&w.text)
+                .map(|value| Real {
+                    value,
+                    span: w.span,
+                })
+                .ok_or_else(|| {
+                    SyntaxError::custom(
+                        e.span(),
+                        codes::E0104,
+                        format!("'{}' is not a number", w.text),
+                        Some(format!(
+                            "the real-argument count says {n}; reals are written like 1, -0.5, \
                          .5, 5. or 1e-3 (no inf, nan or hex)"
-                    )),
-                )
-            })
-    })
+                        )),
+                    )
+                })
+        },
+    )
 }
 
 fn scene_parser<'src, I>() -> impl Parser<'src, I, Vec<Item>, Extra<'src>>
@@ -376,17 +384,22 @@ where
         .then(type_word())
         .then(word())
         .then(group(word(), "string"))
-        .then(group(word(), "integer").validate(|g: ArgGroup<Word>, _, emitter| {
-            if !g.items.is_empty() {
-                emitter.emit(SyntaxError::custom(
-                    SimpleSpan::from(g.count_span.start as usize..g.count_span.end as usize),
-                    codes::E0105,
-                    format!("the integer-argument count is {}, but it must be 0", g.len()),
-                    Some("no Radiance primitive takes integer arguments; write 0".into()),
-                ));
-            }
-            g
-        }))
+        .then(
+            group(word(), "integer").validate(|g: ArgGroup<Word>, _, emitter| {
+                if !g.items.is_empty() {
+                    emitter.emit(SyntaxError::custom(
+                        SimpleSpan::from(g.count_span.start as usize..g.count_span.end as usize),
+                        codes::E0105,
+                        format!(
+                            "the integer-argument count is {}, but it must be 0",
+                            g.len()
+                        ),
+                        Some("no Radiance primitive takes integer arguments; write 0".into()),
+                    ));
+                }
+                g
+            }),
+        )
         .then(group(real(), "real"))
         .map_with(|(((((modifier, kind), name), strings), ints), reals), e| {
             Item::Primitive(Primitive {
@@ -499,7 +512,9 @@ mod tests {
         for ok in ["5.", ".5", "+.5", "1.e5", "1e5", "-.5E-2", "007", "1e400"] {
             assert!(parse_real(ok).is_some(), "{ok}");
         }
-        for bad in ["nan", "inf", "0x10", "1e", "5.5.5", "1,5", ".", ".e1", "", "-", "e5"] {
+        for bad in [
+            "nan", "inf", "0x10", "1e", "5.5.5", "1,5", ".", ".e1", "", "-", "e5",
+        ] {
             assert!(parse_real(bad).is_none(), "{bad}");
         }
     }
@@ -523,9 +538,7 @@ mod tests {
         let codes: Vec<_> = diags.iter().map(|d| d.code.id).collect();
         assert_eq!(codes, vec!["E0104", "E0103"], "{diags:?}");
         assert!(
-            scene
-                .primitives()
-                .any(|p| p.name.text == "c"),
+            scene.primitives().any(|p| p.name.text == "c"),
             "the good primitive after two bad ones is kept"
         );
     }
@@ -537,7 +550,10 @@ mod tests {
         assert_eq!(codes_of("void plastic a 0 0 999999999 1"), vec!["E0102"]);
         assert_eq!(codes_of("void plastc a 0 0 5 1 2 3 4 5"), vec!["E0201"]);
         assert_eq!(codes_of("void plastic a 1 \"open 0 0 0"), vec!["E0106"]);
-        assert_eq!(codes_of("void plastic a 0 0 5 1 2 # three\n 4 5"), vec!["E0107"]);
+        assert_eq!(
+            codes_of("void plastic a 0 0 5 1 2 # three\n 4 5"),
+            vec!["E0107"]
+        );
     }
 
     #[test]
@@ -554,8 +570,22 @@ mod tests {
 
     #[test]
     fn garbage_never_panics() {
-        for text in ["", "\"", "'", "#", "!", "\\", "a", "a b", "a b c", "a b c 1", "\u{0}\u{0}",
-                     "void alias", "x alias y", "void plastic a 0 0 5 1 2 3 4 5 6"] {
+        for text in [
+            "",
+            "\"",
+            "'",
+            "#",
+            "!",
+            "\\",
+            "a",
+            "a b",
+            "a b c",
+            "a b c 1",
+            "\u{0}\u{0}",
+            "void alias",
+            "x alias y",
+            "void plastic a 0 0 5 1 2 3 4 5 6",
+        ] {
             let _ = parse0(text);
         }
     }

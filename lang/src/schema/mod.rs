@@ -57,7 +57,10 @@ pub enum Count {
     Between(u32, u32),
     OneOf(&'static [u32]),
     /// `min`, `min + step`, `min + 2 step`, ...: polygon vertices (9, 12, 15, ...).
-    Stepped { min: u32, step: u32 },
+    Stepped {
+        min: u32,
+        step: u32,
+    },
 }
 
 impl Count {
@@ -77,11 +80,7 @@ impl Count {
             Count::Exactly(k) => k.to_string(),
             Count::AtLeast(k) => format!("{k}+"),
             Count::Between(a, b) => format!("{a}..{b}"),
-            Count::OneOf(ks) => ks
-                .iter()
-                .map(u32::to_string)
-                .collect::<Vec<_>>()
-                .join("|"),
+            Count::OneOf(ks) => ks.iter().map(u32::to_string).collect::<Vec<_>>().join("|"),
             Count::Stepped { min, step } => format!("{min}+{step}N"),
         }
     }
@@ -211,7 +210,10 @@ impl ArgList {
             return None;
         }
         let k = i - self.fixed.len();
-        Some((self.repeat[k % self.repeat.len()], Some(k / self.repeat.len())))
+        Some((
+            self.repeat[k % self.repeat.len()],
+            Some(k / self.repeat.len()),
+        ))
     }
 }
 

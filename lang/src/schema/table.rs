@@ -86,11 +86,36 @@ pub static PRIMITIVE_TYPES: &[PrimitiveType] = &[
         reals: list(
             Count::Exactly(5),
             &[
-                real("red", "red diffuse reflectance (0..1)", Bounds::ANY, REFLECTANCE),
-                real("green", "green diffuse reflectance (0..1)", Bounds::ANY, REFLECTANCE),
-                real("blue", "blue diffuse reflectance (0..1)", Bounds::ANY, REFLECTANCE),
-                real("spec", "specularity, fraction of light reflected specularly (0 .. 0.07 typical)", Bounds::ANY, REFLECTANCE),
-                real("rough", "roughness, rms facet slope (0 smooth .. 0.2 very rough)", Bounds::ANY, Bounds::closed(0.0, 1.0)),
+                real(
+                    "red",
+                    "red diffuse reflectance (0..1)",
+                    Bounds::ANY,
+                    REFLECTANCE,
+                ),
+                real(
+                    "green",
+                    "green diffuse reflectance (0..1)",
+                    Bounds::ANY,
+                    REFLECTANCE,
+                ),
+                real(
+                    "blue",
+                    "blue diffuse reflectance (0..1)",
+                    Bounds::ANY,
+                    REFLECTANCE,
+                ),
+                real(
+                    "spec",
+                    "specularity, fraction of light reflected specularly (0 .. 0.07 typical)",
+                    Bounds::ANY,
+                    REFLECTANCE,
+                ),
+                real(
+                    "rough",
+                    "roughness, rms facet slope (0 smooth .. 0.2 very rough)",
+                    Bounds::ANY,
+                    Bounds::closed(0.0, 1.0),
+                ),
             ],
         ),
     },
