@@ -1,1 +1,3 @@
-//! placeholder
+//! calcomp evaluation and the data Radiance's functions read.
+
+pub mod datafile;

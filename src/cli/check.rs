@@ -152,7 +152,7 @@ fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnos
         let (syntax, syntax_diags) = scene::parse(id, &text);
         found.extend(syntax_diags);
         diags.extend(found);
-        let warn_unused = !path.extension().is_some_and(|x| x == "mat");
+        let warn_unused = path.extension().is_none_or(|x| x != "mat");
         dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
         parsed.push((id, syntax, warn_unused));
     }

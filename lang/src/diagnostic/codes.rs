@@ -39,7 +39,7 @@ codes! {
     E0303 = "E0303" "undefined-alias-target" Error: "An alias refers to a name not defined earlier.";
     E0304 = "E0304" "alias-of-surface" Error: "An alias refers to a surface; only modifiers can be aliased.";
     E0305 = "E0305" "missing-file" Error: "A file named by an argument is not found in the scene's folder or RAYPATH.";
-    E0307 = "E0307" "command-refused" Error: "A '!' command is not a built-in generator and running commands was not allowed.";
+    E0307 = "E0307" "command-failed" Error: "A '!' command could not be expanded: a generator rejected its arguments, or commands nest too deep.";
     // --- scene warnings -----------------------------------------------------------
     W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
     W0102 = "W0102" "long-word" Warning: "A word is longer than the 511 characters Radiance reads; Radiance splits it.";

@@ -9,8 +9,9 @@
 
 use std::collections::{HashMap, HashSet};
 
+use super::command::{CommandExpander, Expansion, MAX_DEPTH, NoCommands};
 use super::ir::{ModRef, Prim, PrimId, PrimKind, Rgb, Scene, Vec3};
-use super::syntax::{Alias, Item, Primitive, SceneFile, Word};
+use super::syntax::{Alias, Command, Item, Primitive, SceneFile, Word};
 use crate::diagnostic::{self as codes, Diagnostic, suggest};
 use crate::schema::{self, ArgList, Category, FileKind, PrimitiveType, StringKind};
 use crate::source::{FileId, Span};
@@ -38,8 +39,18 @@ pub struct LowerInput<'a> {
     pub warn_unused: bool,
 }
 
-/// Lowers files read in order into one scene, as oconv reads its arguments.
+/// Lowers files read in order into one scene, as oconv reads its arguments. `!`
+/// commands are reported as not expanded.
 pub fn lower(inputs: &[LowerInput<'_>], files: &dyn FileLookup) -> (Scene, Vec<Diagnostic>) {
+    lower_with(inputs, files, &NoCommands)
+}
+
+/// [`lower`], expanding `!` commands through `commands`.
+pub fn lower_with(
+    inputs: &[LowerInput<'_>],
+    files: &dyn FileLookup,
+    commands: &dyn CommandExpander,
+) -> (Scene, Vec<Diagnostic>) {
     let mut cx = Lowering {
         scene: Scene::default(),
         diags: Vec::new(),
@@ -49,23 +60,10 @@ pub fn lower(inputs: &[LowerInput<'_>], files: &dyn FileLookup) -> (Scene, Vec<D
         used: HashSet::new(),
         warn_unused: Vec::new(),
         files,
+        commands,
     };
     for input in inputs {
-        for item in &input.syntax.items {
-            match item {
-                Item::Primitive(p) => cx.primitive(p, input.warn_unused),
-                Item::Alias(a) => cx.alias(a, input.warn_unused),
-                Item::Command(c) => cx.diags.push(
-                    Diagnostic::new(
-                        codes::W0303,
-                        c.span,
-                        "this '!' command was not run, so what it makes is not checked",
-                    )
-                    .with_hint("radc never runs shell commands while checking"),
-                ),
-                Item::Comment(_) | Item::Error(_) => {}
-            }
-        }
+        cx.items(&input.syntax.items, input.warn_unused, 0);
     }
     cx.report_unused();
     cx.report_conflicting_materials();
@@ -84,9 +82,69 @@ struct Lowering<'a> {
     used: HashSet<PrimId>,
     warn_unused: Vec<bool>,
     files: &'a dyn FileLookup,
+    commands: &'a dyn CommandExpander,
 }
 
 impl Lowering<'_> {
+    fn items(&mut self, items: &[Item], warn_unused: bool, depth: u32) {
+        for item in items {
+            match item {
+                Item::Primitive(p) => self.primitive(p, warn_unused),
+                Item::Alias(a) => self.alias(a, warn_unused),
+                Item::Command(c) => self.command(c, warn_unused, depth),
+                Item::Comment(_) | Item::Error(_) => {}
+            }
+        }
+    }
+
+    /// Expands a `!` line and lowers its output in place, as Radiance reads a
+    /// command's output where the command stands. Diagnostics inside the output get a
+    /// label pointing back at the command line.
+    fn command(&mut self, c: &Command, warn_unused: bool, depth: u32) {
+        if depth >= MAX_DEPTH {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0307,
+                    c.span,
+                    format!("commands nest more than {MAX_DEPTH} deep"),
+                )
+                .with_hint("a file probably includes itself through '!xform'"),
+            );
+            return;
+        }
+        match self.commands.expand(&c.text, c.span.file, depth + 1) {
+            Expansion::Text { file, text } => {
+                let (syntax, mut diags) = super::parse(file, &text);
+                let first = self.diags.len();
+                self.diags.append(&mut diags);
+                self.items(&syntax.items, warn_unused, depth + 1);
+                for d in &mut self.diags[first..] {
+                    if d.span.file == file {
+                        d.labels.push(crate::diagnostic::Label {
+                            span: c.span,
+                            message: "in the output of this command".into(),
+                        });
+                    }
+                }
+            }
+            Expansion::NotExpanded { reason } => self.diags.push(
+                Diagnostic::new(
+                    codes::W0303,
+                    c.span,
+                    "this '!' command was not run, so what it makes is not checked",
+                )
+                .with_hint(reason),
+            ),
+            Expansion::Failed { message, hint } => {
+                let mut d = Diagnostic::new(codes::E0307, c.span, message);
+                if let Some(h) = hint {
+                    d = d.with_hint(h);
+                }
+                self.diags.push(d);
+            }
+        }
+    }
+
     fn push(&mut self, prim: Prim, warn_unused: bool) -> PrimId {
         let id = PrimId(self.scene.prims.len() as u32);
         self.scene.prims.push(prim);
@@ -149,22 +207,29 @@ impl Lowering<'_> {
                 )
                 .with_hint("'void' and 'inherit' are reserved words; choose another name"),
             );
+            self.used.insert(id);
             return;
         }
-        if let Some(&old) = self.modifiers.get(&name.text) {
-            self.redefinition(old, id, name);
+        if let Some(&old) = self.modifiers.get(&name.text)
+            && self.redefinition(old, id, name)
+        {
+            // Radiance keeps binding the name to the first of identical definitions
+            // (`insertobject` in modobject.c); the copy is harmless, not unused.
+            self.used.insert(id);
+            return;
         }
         self.modifiers.insert(name.text.clone(), id);
     }
 
     /// Radiance silently keeps an identical redefinition; a different one rebinds the
     /// name for later uses only, which is worth a warning.
-    fn redefinition(&mut self, old: PrimId, new: PrimId, name: &Word) {
+    /// Returns whether the new definition is identical to the old one.
+    fn redefinition(&mut self, old: PrimId, new: PrimId, name: &Word) -> bool {
         let (Some(a), Some(b)) = (self.scene.get(old), self.scene.get(new)) else {
-            return;
+            return false;
         };
         if a.kind == b.kind && a.schema.name == b.schema.name && a.modifier == b.modifier {
-            return;
+            return true;
         }
         let old_span = a.span;
         self.diags.push(
@@ -176,6 +241,7 @@ impl Lowering<'_> {
             .with_label(old_span, "earlier definition")
             .with_hint("primitives above this line keep using the earlier definition"),
         );
+        false
     }
 
     fn resolve_modifier(&mut self, word: &Word, schema: &PrimitiveType) -> ModRef {
@@ -217,6 +283,9 @@ impl Lowering<'_> {
             );
             return ModRef::Unresolved;
         }
+        // One report per undefined name: a generator's output missing its material
+        // would otherwise drown the file in identical errors.
+        self.unknown.insert(name.to_string());
         let mut d = Diagnostic::new(
             codes::E0301,
             span,
@@ -259,6 +328,7 @@ impl Lowering<'_> {
                 reals: Vec::new(),
             },
         };
+        let failed = target.is_none();
         let prim = Prim {
             name: a.name.text.clone(),
             name_span: a.name.span,
@@ -269,7 +339,8 @@ impl Lowering<'_> {
             kind,
             span: a.span,
         };
-        self.define(prim, &a.name, warn_unused);
+        // A broken alias was reported already; don't also call it unused.
+        self.define(prim, &a.name, warn_unused && !failed);
     }
 
     fn bad_alias_target(&mut self, a: &Alias) {
@@ -347,7 +418,12 @@ impl Lowering<'_> {
     /// Hard limits (errors) and plausible ranges (warnings) of real arguments. Surface
     /// geometry is judged in `lower_kind`, where Radiance's own rules are known.
     fn check_values(&mut self, p: &Primitive, schema: &PrimitiveType) {
-        let geometry = schema.category == Category::Surface;
+        // Radii, axes and vertices are judged by Radiance's own geometry rules in
+        // `lower_kind` (a negative radius flips the surface rather than failing).
+        let geometry = matches!(
+            schema.name,
+            "sphere" | "bubble" | "cone" | "cup" | "cylinder" | "tube" | "ring" | "polygon"
+        );
         for (i, r) in p.reals.items.iter().enumerate() {
             let Some((arg, _)) = schema.reals.arg_at(i) else {
                 continue;
@@ -377,7 +453,7 @@ impl Lowering<'_> {
                     )
                     .with_hint(format!("{}: {}", arg.name, arg.meaning)),
                 );
-            } else if !arg.plausible.contains(r.value) {
+            } else if !geometry && !arg.plausible.contains(r.value) {
                 self.diags.push(
                     Diagnostic::new(
                         codes::W0201,
@@ -432,7 +508,7 @@ impl Lowering<'_> {
             if arg.kind == StringKind::Transform {
                 break;
             }
-            if arg.kind != StringKind::Modifier || w.text == "void" {
+            if arg.kind != StringKind::Modifier || w.text == "void" || w.text == "inherit" {
                 continue;
             }
             if let ModRef::Prim(id) = self.lookup_modifier(&w.text, w.span) {
@@ -890,4 +966,185 @@ fn real_span(p: &Primitive, i: usize) -> Span {
         .get(i)
         .map(|r| r.span)
         .unwrap_or(p.reals.count_span)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::check_text;
+
+    fn check(text: &str) -> (Scene, Vec<&'static str>) {
+        let (scene, diags) = check_text(FileId(0), text, &AssumeFilesExist, true);
+        (scene, diags.iter().map(|d| d.code.id).collect())
+    }
+
+    const PAINT: &str = "void plastic paint 0 0 5 .5 .5 .5 0 0\n";
+
+    #[test]
+    fn a_modifier_binds_to_the_most_recent_earlier_definition() {
+        let text = format!(
+            "{PAINT}paint sphere a 0 0 4 0 0 0 1\n\
+             void metal paint 0 0 5 .5 .5 .5 .9 0\npaint sphere b 0 0 4 0 0 0 1\n"
+        );
+        let (scene, codes) = check(&text);
+        assert_eq!(codes, vec!["W0302"]);
+        let kind_of_modifier = |name: &str| {
+            let p = scene.prims.iter().find(|p| p.name == name).unwrap();
+            let ModRef::Prim(m) = p.modifier else {
+                panic!()
+            };
+            scene.get(m).unwrap().schema.name
+        };
+        assert_eq!(kind_of_modifier("a"), "plastic");
+        assert_eq!(kind_of_modifier("b"), "metal");
+    }
+
+    #[test]
+    fn identical_redefinitions_are_silent() {
+        let (_, codes) = check(&format!("{PAINT}{PAINT}paint sphere a 0 0 4 0 0 0 1\n"));
+        assert!(codes.is_empty(), "{codes:?}");
+    }
+
+    #[test]
+    fn aliases_resolve_and_inherit() {
+        let text = format!(
+            "{PAINT}inherit alias coat paint\nvoid alias coat2 coat\n\
+             coat sphere a 0 0 4 0 0 0 1\ncoat2 sphere b 0 0 4 0 0 0 1\n"
+        );
+        let (scene, codes) = check(&text);
+        assert!(codes.is_empty(), "{codes:?}");
+        let coat = scene.prims.iter().find(|p| p.name == "coat").unwrap();
+        assert!(matches!(coat.kind, PrimKind::Alias { .. }));
+        assert_eq!(coat.modifier, ModRef::Inherit);
+    }
+
+    #[test]
+    fn reference_errors() {
+        assert_eq!(check("void alias a nothere\n").1, vec!["E0303"]);
+        let surface = format!("{PAINT}paint sphere s 0 0 4 0 0 0 1\n");
+        assert_eq!(
+            check(&format!("{surface}void alias a s\n")).1,
+            vec!["E0304"]
+        );
+        assert_eq!(
+            check(&format!("{surface}s sphere t 0 0 4 0 0 0 1\n")).1,
+            vec!["E0302"]
+        );
+        assert_eq!(
+            check(&format!("{PAINT}inherit sphere t 0 0 4 0 0 0 1\n")).1,
+            vec!["E0206", "W0301"]
+        );
+        assert_eq!(
+            check("void plastic void 0 0 5 .5 .5 .5 0 0\n").1,
+            vec!["E0204"]
+        );
+        // One report for an undefined name, however often it is used.
+        assert_eq!(
+            check("m sphere a 0 0 4 0 0 0 1\nm sphere b 0 0 4 0 0 0 1\n").1,
+            vec!["E0301"]
+        );
+    }
+
+    #[test]
+    fn a_material_modified_by_a_material_conflicts() {
+        let text =
+            format!("{PAINT}paint plastic p2 0 0 5 .5 .5 .5 0 0\np2 sphere s 0 0 4 0 0 0 1\n");
+        assert_eq!(check(&text).1, vec!["E0302"]);
+    }
+
+    #[test]
+    fn counts_values_and_geometry() {
+        assert_eq!(
+            check("void plastic m 0 0 4 .5 .5 .5 0\nm sphere s 0 0 4 0 0 0 1\n").1,
+            vec!["E0202"]
+        );
+        assert_eq!(
+            check("void plastic m 0 0 5 1.5 .5 .5 0 0\nm sphere s 0 0 4 0 0 0 1\n").1,
+            vec!["W0201"]
+        );
+        let (scene, codes) = check(&format!("{PAINT}paint sphere s 0 0 4 0 0 0 -1\n"));
+        assert_eq!(codes, vec!["W0202"]);
+        assert!(matches!(scene.prims[1].kind, PrimKind::Bubble { radius, .. } if radius == 1.0));
+        assert_eq!(
+            check(&format!("{PAINT}paint sphere s 0 0 4 0 0 0 0\n")).1,
+            vec!["W0206"]
+        );
+        assert_eq!(
+            check(&format!("{PAINT}paint cone c 0 0 8 0 0 0 0 0 0 1 .5\n")).1,
+            vec!["W0206"]
+        );
+        assert_eq!(
+            check(&format!("{PAINT}paint polygon p 0 0 9 0 0 0 1 1 1 2 2 2\n")).1,
+            vec!["W0204"]
+        );
+        assert_eq!(
+            check(&format!(
+                "{PAINT}paint polygon p 0 0 12 0 0 0 1 0 0 1 1 0 0 1 1\n"
+            ))
+            .1,
+            vec!["W0203"]
+        );
+    }
+
+    #[test]
+    fn unused_modifiers_are_warned_and_reachability_skips_them() {
+        let text =
+            format!("{PAINT}void plastic spare 0 0 5 .5 .5 .5 0 0\npaint sphere s 0 0 4 0 0 0 1\n");
+        let (scene, codes) = check(&text);
+        assert_eq!(codes, vec!["W0301"]);
+        assert_eq!(scene.reachable(), vec![true, false, true]);
+    }
+
+    /// Expands `!gen NAME` into a sphere named NAME using the material `paint`, and
+    /// `!loop` into itself.
+    struct FakeGenerators;
+
+    impl CommandExpander for FakeGenerators {
+        fn expand(&self, command: &str, _: FileId, depth: u32) -> Expansion {
+            let file = FileId(depth);
+            match command.split_whitespace().collect::<Vec<_>>().as_slice() {
+                ["gen", name] => Expansion::Text {
+                    file,
+                    text: format!("paint sphere {name} 0 0 4 0 0 0 1\n"),
+                },
+                ["genbad"] => Expansion::Text {
+                    file,
+                    text: "undefined sphere x 0 0 4 0 0 0 1\n".into(),
+                },
+                ["loop"] => Expansion::Text {
+                    file,
+                    text: "!loop\n".into(),
+                },
+                _ => Expansion::NotExpanded {
+                    reason: "not a generator".into(),
+                },
+            }
+        }
+    }
+
+    fn check_with_commands(text: &str) -> (Scene, Vec<Diagnostic>) {
+        let (syntax, mut diags) = crate::scene::parse(FileId(0), text);
+        let input = LowerInput {
+            file: FileId(0),
+            syntax: &syntax,
+            warn_unused: true,
+        };
+        let (scene, more) = lower_with(&[input], &AssumeFilesExist, &FakeGenerators);
+        diags.extend(more);
+        (scene, diags)
+    }
+
+    #[test]
+    fn commands_expand_in_place_and_errors_point_back() {
+        let (scene, diags) = check_with_commands(&format!("{PAINT}!gen ball\n!ls -l\n!genbad\n"));
+        assert!(scene.prims.iter().any(|p| p.name == "ball"));
+        let codes: Vec<_> = diags.iter().map(|d| d.code.id).collect();
+        assert_eq!(codes, vec!["W0303", "E0301"]);
+        assert_eq!(diags[1].labels[0].message, "in the output of this command");
+        let (_, diags) = check_with_commands("!loop\n");
+        assert_eq!(
+            diags.iter().map(|d| d.code.id).collect::<Vec<_>>(),
+            vec!["E0307"]
+        );
+    }
 }

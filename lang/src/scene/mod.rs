@@ -1,5 +1,6 @@
 //! Scene files (`.rad`, `.mat`): lexing, parsing, lowering to the typed IR and checks.
 
+pub mod command;
 pub mod format;
 pub mod ir;
 pub mod lexer;
@@ -8,7 +9,8 @@ pub mod parser;
 pub mod scope;
 pub mod syntax;
 
-pub use lower::{AssumeFilesExist, FileLookup, LowerInput, lower};
+pub use command::{CommandExpander, Expansion, NoCommands};
+pub use lower::{AssumeFilesExist, FileLookup, LowerInput, lower, lower_with};
 pub use parser::parse;
 
 use crate::diagnostic::Diagnostic;
