@@ -1,6 +1,8 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
 mod check;
+mod fmt;
+mod lsp;
 mod report;
 
 use std::process::ExitCode;
@@ -19,6 +21,16 @@ const COMMANDS: &[Command] = &[
         name: "check",
         summary: "check scene files for errors (like oconv, but all errors at once)",
         run: check::run,
+    },
+    Command {
+        name: "fmt",
+        summary: "lay scene files out in Radiance's conventional form",
+        run: fmt::run,
+    },
+    Command {
+        name: "lsp",
+        summary: "run the language server over standard input and output",
+        run: lsp::run,
     },
     Command {
         name: "help",

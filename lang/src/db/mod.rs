@@ -10,7 +10,9 @@
 
 mod queries;
 
-pub use queries::{ParsedScene, check_scene, format_scene, line_index, parse_scene};
+pub use queries::{
+    ParsedScene, check_scene, format_scene, line_index, modifier_scope, parse_scene,
+};
 
 use std::path::Path;
 use std::sync::{Arc, Mutex};

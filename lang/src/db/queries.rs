@@ -5,6 +5,7 @@ use std::path::Path;
 
 use super::{Db, FileSystem, SourceFile};
 use crate::diagnostic::Diagnostic;
+use crate::scene::scope::ModifierScope;
 use crate::scene::syntax::SceneFile;
 use crate::scene::{self, FileLookup, LowerInput};
 use crate::schema::FileKind;
@@ -41,6 +42,12 @@ pub fn parse_scene(db: &dyn Db, file: SourceFile) -> ParsedScene {
 #[salsa::tracked(returns(ref), no_eq)]
 pub fn line_index(db: &dyn Db, file: SourceFile) -> LineIndex {
     LineIndex::new(file.text(db))
+}
+
+/// Which modifier each name refers to (navigation, completion, hover).
+#[salsa::tracked(returns(ref), no_eq)]
+pub fn modifier_scope(db: &dyn Db, file: SourceFile) -> ModifierScope {
+    ModifierScope::new(&parse_scene(db, file).syntax)
 }
 
 /// Every diagnostic for one file checked as a scene on its own, as `radc check FILE`

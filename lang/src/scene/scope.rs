@@ -107,12 +107,17 @@ impl ModifierScope {
 
     /// The definition named or referred to by the word at byte `offset`.
     pub fn definition_at(&self, offset: usize) -> Option<&Definition> {
+        self.symbol_at(offset).map(|(_, d)| d)
+    }
+
+    /// The word at byte `offset` (its span) when it names or refers to a definition.
+    pub fn symbol_at(&self, offset: usize) -> Option<(Span, &Definition)> {
         let hit = |s: &Span| s.start as usize <= offset && offset <= s.end as usize;
         if let Some(d) = self.definitions.iter().find(|d| hit(&d.name_span)) {
-            return Some(d);
+            return Some((d.name_span, d));
         }
         let r = self.references.iter().find(|r| hit(&r.span))?;
-        self.definitions.get(r.target?)
+        Some((r.span, self.definitions.get(r.target?)?))
     }
 
     /// The spans of every word naming `def` (its own name first), for references
