@@ -1,7 +1,7 @@
 //! End-to-end tests of `radc lsp`: the real binary driven over stdio with JSON-RPC, as
 //! an editor drives it. Every response is checked exactly.
 
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
