@@ -114,3 +114,49 @@ impl<'a> Document<'a> {
         })
     }
 }
+
+/// Builds a one-file database for handler tests.
+#[cfg(test)]
+pub fn with_document<T>(text: &str, f: impl FnOnce(&Document<'_>) -> T) -> T {
+    let mut db = Database::default();
+    let file = db.add_file("/scenes/test.rad", text);
+    let uri: Uri = "file:///scenes/test.rad".parse().expect("a valid uri");
+    f(&Document {
+        db: &db,
+        file,
+        uri: &uri,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn positions_count_utf16_units() {
+        // '😀' is two UTF-16 units and four bytes.
+        with_document("# 😀 x\nvoid", |doc| {
+            assert_eq!(doc.offset(Position::new(0, 5)), 7);
+            assert_eq!(doc.position(7), Position::new(0, 5));
+            // Past the end of a line: its end; past the last line: the end of text.
+            assert_eq!(doc.offset(Position::new(0, 99)), 8);
+            assert_eq!(doc.offset(Position::new(7, 0)), 13);
+            // Inside a surrogate pair: the character's start is never split.
+            assert_eq!(doc.offset(Position::new(0, 3)), 6);
+        });
+    }
+
+    #[test]
+    fn locates_words_of_a_primitive() {
+        let text = "void plastic red\n0\n0\n5 .5 .1 .1 0 0\n";
+        with_document(text, |doc| {
+            let part = |offset| doc.locate(offset).map(|(_, part, _)| part);
+            assert_eq!(part(0), Some(Part::Modifier));
+            assert_eq!(part(6), Some(Part::Type));
+            assert_eq!(part(14), Some(Part::Name));
+            assert_eq!(part(17), Some(Part::Count(Some(ArgSide::Strings))));
+            assert_eq!(part(19), Some(Part::Count(None)));
+            assert_eq!(part(24), Some(Part::Arg(ArgSide::Reals, 0)));
+        });
+    }
+}

@@ -58,7 +58,7 @@ fn write_item(out: &mut String, text: &str, item: &Item) {
         Item::Primitive(p) => write_primitive(out, text, p),
         Item::Alias(a) => {
             let words = [a.modifier.span, a.keyword, a.name.span, a.target.span];
-            out.push_str(&words.map(src).join(" "));
+            out.push_str(&join(&words.map(src)));
         }
         Item::Command(c) => out.push_str(src(c.span)),
         Item::Comment(s) | Item::Error(s) => out.push_str(src(*s)),
@@ -109,9 +109,9 @@ fn write_group<T>(
     let repeat = layout.map_or(0, |l| l.repeat.len());
     let fixed = layout.map_or(0, |l| l.fixed.len());
     if repeat == 0 || group.len() <= fixed + repeat {
-        for w in words {
+        if !words.is_empty() {
             out.push(' ');
-            out.push_str(w);
+            out.push_str(&join(words));
         }
         return;
     }
@@ -122,8 +122,29 @@ fn write_group<T>(
     for line in lines {
         out.push('\n');
         out.push_str(INDENT);
-        out.push_str(&line.join(" "));
+        out.push_str(&join(line));
     }
+}
+
+/// Words separated by spaces, except that a word starting with `#` or `!` ends its
+/// line: Radiance reads it as one argument only when nothing follows it on the line
+/// (otherwise it is a comment or a command), so the formatter must never join
+/// another word onto it.
+fn join(words: &[&str]) -> String {
+    let mut out = String::new();
+    for (i, w) in words.iter().enumerate() {
+        if i > 0 {
+            let prev = words[i - 1];
+            if prev.starts_with(['#', '!']) {
+                out.push('\n');
+                out.push_str(INDENT);
+            } else {
+                out.push(' ');
+            }
+        }
+        out.push_str(w);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -160,5 +181,110 @@ mod tests {
     #[test]
     fn refuses_files_with_syntax_errors() {
         assert_eq!(fmt("void plastic red 0 0 5 1 1"), None);
+    }
+}
+
+#[cfg(test)]
+mod properties {
+    use super::*;
+    use crate::scene::lexer::lex;
+    use crate::source::FileId;
+    use proptest::prelude::*;
+
+    /// Scene-like text: real words, counts, numbers, comments, quotes and line breaks.
+    fn scene_text() -> impl Strategy<Value = String> {
+        let word = prop_oneof![
+            Just("void"),
+            Just("plastic"),
+            Just("polygon"),
+            Just("sphere"),
+            Just("antimatter"),
+            Just("mixfunc"),
+            Just("alias"),
+            Just("red"),
+            Just("0"),
+            Just("1"),
+            Just("2"),
+            Just("3"),
+            Just("4"),
+            Just("5"),
+            Just("9"),
+            Just(".5"),
+            Just("-1e2"),
+            Just("#"),
+            Just("#x"),
+            Just("!genbox"),
+            Just("\"a b\""),
+            Just("\n"),
+            Just("\n\n\n"),
+            Just("\\\n"),
+        ];
+        prop::collection::vec(word, 0..60).prop_map(|w| w.join(" "))
+    }
+
+    /// Well-formed primitives with random spacing, strings and comments between them.
+    fn valid_scene() -> impl Strategy<Value = String> {
+        let space = prop_oneof![Just(" "), Just("\n"), Just("  \t"), Just("\n\n\n")];
+        let string = prop_oneof![
+            Just("a"),
+            Just("#x"),
+            Just("-t"),
+            Just("\"q r\""),
+            Just("!y")
+        ];
+        let real = prop_oneof![Just("0"), Just(".5"), Just("-1e2"), Just("3.")];
+        let kind = prop_oneof![
+            Just("polygon"),
+            Just("plastic"),
+            Just("antimatter"),
+            Just("texfunc"),
+            Just("zz")
+        ];
+        let primitive = (
+            kind,
+            prop::collection::vec(string, 0..5),
+            prop::collection::vec(real, 0..13),
+            prop::collection::vec(space, 8),
+            prop::bool::ANY,
+        )
+            .prop_map(|(kind, strings, reals, ws, comment)| {
+                let mut out = format!("m{}{kind}{}n{}{}", ws[0], ws[1], ws[2], strings.len());
+                for s in &strings {
+                    out.push_str(ws[3]);
+                    out.push_str(s);
+                }
+                out.push_str(&format!("{}0{}{}", ws[4], ws[5], reals.len()));
+                for r in &reals {
+                    out.push_str(ws[6]);
+                    out.push_str(r);
+                }
+                if comment {
+                    out.push_str(" # note");
+                }
+                out.push_str(ws[7]);
+                out
+            });
+        prop::collection::vec(primitive, 0..6).prop_map(|p| p.concat())
+    }
+
+    fn words(text: &str) -> Vec<String> {
+        lex(text)
+            .into_iter()
+            .map(|(t, _)| t.text.trim_end().to_string())
+            .collect()
+    }
+
+    proptest! {
+        #[test]
+        fn formatting_keeps_every_word_and_is_idempotent(text in prop_oneof![scene_text(), valid_scene()]) {
+            let (syntax, diags) = crate::scene::parse(FileId(0), &text);
+            if let Some(once) = format(&text, &syntax, &diags) {
+                prop_assert_eq!(words(&once), words(&text));
+                let (again_syntax, again_diags) = crate::scene::parse(FileId(0), &once);
+                prop_assert_eq!(&again_syntax.items.len(), &syntax.items.len());
+                let twice = format(&once, &again_syntax, &again_diags);
+                prop_assert_eq!(twice.as_deref(), Some(once.as_str()));
+            }
+        }
     }
 }

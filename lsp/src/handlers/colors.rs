@@ -85,9 +85,41 @@ fn brightness(rgb: [f64; 3]) -> f64 {
 fn trim(v: f64) -> String {
     let s = format!("{v:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s.is_empty() || s == "-" {
+    if s.is_empty() || s == "-" || s == "-0" {
         "0".into()
     } else {
         s.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::document::with_document;
+
+    #[test]
+    fn lights_are_scaled_to_their_brightest_component() {
+        let text = "void light lamp\n0\n0\n3 50 25 0\n";
+        with_document(text, |doc| {
+            let colors = document_colors(doc);
+            assert_eq!(colors.len(), 1);
+            assert_eq!((colors[0].color.red, colors[0].color.green), (1.0, 0.5));
+            let picked = Color {
+                red: 0.5,
+                green: 1.0,
+                blue: 0.0,
+                alpha: 1.0,
+            };
+            let p = presentations(doc, picked, colors[0].range);
+            assert_eq!(p[0].label, "25 50 0");
+        });
+    }
+
+    #[test]
+    fn trims_numbers() {
+        assert_eq!(trim(0.5), "0.5");
+        assert_eq!(trim(0.0), "0");
+        assert_eq!(trim(0.1234), "0.123");
+        assert_eq!(trim(-0.0001), "0");
     }
 }

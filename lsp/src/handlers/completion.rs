@@ -106,3 +106,42 @@ fn modifiers(doc: &Document<'_>, word_start: usize, replace: Range) -> Vec<Compl
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::document::with_document;
+
+    fn labels(text: &str, line: u32, character: u32) -> Option<Vec<String>> {
+        with_document(text, |doc| {
+            let items = completion(doc, Position::new(line, character))?;
+            Some(items.into_iter().map(|i| i.label).collect())
+        })
+    }
+
+    const MATERIALS: &str =
+        "void plastic a\n0\n0\n5 1 1 1 0 0\n\nvoid plastic b\n0\n0\n5 1 1 1 0 0\n";
+
+    #[test]
+    fn modifiers_defined_above_the_cursor() {
+        let text = format!("{MATERIALS}\n");
+        assert_eq!(
+            labels(&text, 9, 0),
+            Some(vec!["void".into(), "a".into(), "b".into()])
+        );
+        // Between the two definitions only the first is visible.
+        assert_eq!(
+            labels(MATERIALS, 4, 0),
+            Some(vec!["void".into(), "a".into()])
+        );
+    }
+
+    #[test]
+    fn types_after_a_modifier_and_nothing_inside_arguments() {
+        let text = format!("{MATERIALS}\nb pl");
+        let types = labels(&text, 10, 4).unwrap_or_default();
+        assert_eq!(types.len(), PRIMITIVE_TYPES.len());
+        assert_eq!(labels(&text, 3, 2), None, "inside a real argument list");
+        assert_eq!(labels("# comment ", 0, 10), None);
+    }
+}

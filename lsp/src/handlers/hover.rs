@@ -101,3 +101,37 @@ fn arg_text(p: &Primitive, ty: &PrimitiveType, side: ArgSide, i: usize) -> Optio
         ty.name
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::document::with_document;
+
+    fn hover_text(text: &str, line: u32, character: u32) -> Option<String> {
+        with_document(text, |doc| {
+            let h = hover(doc, Position::new(line, character))?;
+            match h.contents {
+                HoverContents::Markup(m) => Some(m.value),
+                _ => None,
+            }
+        })
+    }
+
+    #[test]
+    fn counts_arguments_and_void() {
+        let text = "void plastic red\n0\n0\n4 .5 .1 .1 0\n";
+        assert_eq!(
+            hover_text(text, 3, 0).as_deref(),
+            Some("the number of real arguments (4 given); **plastic** takes 5")
+        );
+        assert!(hover_text(text, 0, 1).is_some_and(|t| t.starts_with("`void`")));
+        assert!(hover_text(text, 3, 3).is_some_and(|t| t.starts_with("red — ")));
+    }
+
+    #[test]
+    fn unknown_types_and_blank_space_have_no_hover() {
+        let text = "void plastik red\n0\n0\n0\n\n";
+        assert_eq!(hover_text(text, 0, 7), None);
+        assert_eq!(hover_text(text, 4, 0), None);
+    }
+}
