@@ -6,6 +6,7 @@
 
 pub mod cal;
 pub mod datafile;
+pub mod db;
 pub mod diagnostic;
 pub mod scene;
 pub mod schema;

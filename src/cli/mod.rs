@@ -6,8 +6,10 @@ mod doc;
 mod expand;
 // `gen` is a reserved word in edition 2024, so the file is named for the task and the
 // module for what it does.
+mod fmt;
 #[path = "gen.rs"]
 mod generate;
+mod lsp;
 mod report;
 
 use std::io::Write;
@@ -37,6 +39,16 @@ const COMMANDS: &[Command] = &[
         name: "explain",
         summary: "what a diagnostic code means: 'explain E0301'",
         run: doc::explain,
+    },
+    Command {
+        name: "fmt",
+        summary: "lay scene files out in Radiance's conventional form",
+        run: fmt::run,
+    },
+    Command {
+        name: "lsp",
+        summary: "run the language server over standard input and output",
+        run: lsp::run,
     },
     Command {
         name: "help",

@@ -1,11 +1,13 @@
 //! Scene files (`.rad`, `.mat`): lexing, parsing, lowering to the typed IR and checks.
 
 pub mod command;
+pub mod format;
 pub mod functions;
 pub mod ir;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
+pub mod scope;
 pub mod syntax;
 
 pub use command::{CommandExpander, Expansion, NoCommands};
