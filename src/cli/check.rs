@@ -16,7 +16,8 @@ use radc_lang::{Diagnostic, FileId, Severity};
 use super::USAGE_ERROR;
 use super::report::{self, Format, Sources};
 
-const USAGE: &str = "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
+const USAGE: &str =
+    "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
 
 struct Options {
     format: Format,
@@ -90,7 +91,10 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
-    let errors = diags.iter().filter(|d| d.severity == Severity::Error).count();
+    let errors = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
     let warnings = diags.len() - errors;
     if opts.format == Format::Human && !opts.quiet {
         println!(
@@ -123,7 +127,11 @@ fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 /// Reads, parses and lowers `paths` in order as one scene.
-fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
+pub(super) fn check_scene(
+    paths: &[PathBuf],
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) -> scene::ir::Scene {
     let mut parsed = Vec::new();
     let mut dirs = Vec::new();
     for path in paths {
@@ -161,8 +169,9 @@ fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnos
         })
         .collect();
     let lookup = SearchPath::new(dirs);
-    let (_scene, more) = scene::lower(&inputs, &lookup);
+    let (scene, more) = scene::lower(&inputs, &lookup);
     diags.extend(more);
+    scene
 }
 
 fn sources_len(sources: &Sources) -> u32 {

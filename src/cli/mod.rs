@@ -2,6 +2,7 @@
 
 mod check;
 mod report;
+mod trace;
 
 use std::process::ExitCode;
 
@@ -19,6 +20,11 @@ const COMMANDS: &[Command] = &[
         name: "check",
         summary: "check scene files for errors (like oconv, but all errors at once)",
         run: check::run,
+    },
+    Command {
+        name: "trace",
+        summary: "trace rays from stdin through a scene, like rtrace",
+        run: trace::run,
     },
     Command {
         name: "help",
@@ -52,7 +58,10 @@ pub fn dispatch(args: &[String]) -> ExitCode {
 }
 
 fn help(_: &[String]) -> ExitCode {
-    println!("radc {}: a toolchain for the RADIANCE languages\n", env!("CARGO_PKG_VERSION"));
+    println!(
+        "radc {}: a toolchain for the RADIANCE languages\n",
+        env!("CARGO_PKG_VERSION")
+    );
     println!("usage: radc <command> [options]\n\ncommands:");
     for c in COMMANDS {
         println!("  {:<10} {}", c.name, c.summary);
