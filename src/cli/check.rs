@@ -156,7 +156,7 @@ pub(super) fn check_scene(
         let (syntax, syntax_diags) = scene::parse(id, &text);
         found.extend(syntax_diags);
         diags.extend(found);
-        let warn_unused = !path.extension().is_some_and(|x| x == "mat");
+        let warn_unused = path.extension().is_none_or(|x| x != "mat");
         dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
         parsed.push((id, syntax, warn_unused));
     }

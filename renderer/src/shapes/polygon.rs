@@ -15,6 +15,9 @@ pub struct Polygon {
     pub area: f64,
     /// The axis the normal is most aligned with; the inside test drops it.
     axis: usize,
+    /// The vertex mean, and the vertices relative to it, for the inside test.
+    center: Vec3,
+    local: Vec<Vec3>,
 }
 
 /// `a` and `b` equal within `FTINY` relative (Radiance's `FRELEQ`).
@@ -53,12 +56,16 @@ impl Polygon {
         if a.z > a[axis] {
             axis = 2;
         }
+        let center = vertices.iter().copied().sum::<Vec3>() / vertices.len() as f64;
+        let local = vertices.iter().map(|v| *v - center).collect();
         Some(Polygon {
             vertices,
             normal,
             offset,
             area,
             axis,
+            center,
+            local,
         })
     }
 
@@ -80,15 +87,22 @@ impl Polygon {
 
     /// Whether a point of the plane lies inside (edges included), by counting the
     /// polygon's edges crossing the ray from `p` along the projection's +x axis.
+    ///
+    /// Radiance's edge tolerance is relative to the coordinates' magnitude, so far from
+    /// the origin it grows past the polygon's own size (a point 0.1 outside a polygon at
+    /// x = 250000 counts as on its edge; Radiance's octree hides this by clipping hits to
+    /// cells). radc measures coordinates from the polygon's centre instead, which keeps
+    /// the same answers near the origin and the right ones far from it.
     pub fn contains(&self, p: Vec3) -> bool {
         let xi = (self.axis + 1) % 3;
         let yi = (xi + 1) % 3;
+        let p = p - self.center;
         let (x, y) = (p[xi], p[yi]);
-        let n = self.vertices.len();
+        let n = self.local.len();
         let mut odd = false;
         for i in 0..n {
-            let a = self.vertices[(i + n - 1) % n];
-            let b = self.vertices[i];
+            let a = self.local[(i + n - 1) % n];
+            let b = self.local[i];
             let (ax, ay, bx, by) = (a[xi], a[yi], b[xi], b[yi]);
             // A horizontal edge through the point that spans it.
             if rel_eq(ay, y) && rel_eq(by, y) && ((ax > x) != (bx > x)) {
@@ -122,7 +136,7 @@ impl Polygon {
     }
 
     pub fn centroid(&self) -> Vec3 {
-        self.vertices.iter().copied().sum::<Vec3>() / self.vertices.len() as f64
+        self.center
     }
 
     pub fn bounds(&self) -> Bounds {
