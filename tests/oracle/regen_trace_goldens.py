@@ -115,6 +115,16 @@ def cases():
         ["-I"],
         irradiance_points(rng, 20, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
     )
+    em_view = box_rays(rng, 60, [-3, -3, .2], [3, 3, 2.5], toward=[0, 0, .8], spread=3)
+    case("emitters-view", "emitters.rad", ["-av", ".05", ".05", ".05"], em_view, "-ovlLN")
+    case("emitters-up", "emitters.rad", [], box_rays(rng, 30, [1.5, -1, 1], [3.5, 1, 2.5], toward=[2.5, 0, 3.5], spread=1), "-ovL")
+    case(
+        "emitters-irradiance",
+        "emitters.rad",
+        ["-I"],
+        irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 1], [(0, 0, 1), (-.5, .5, .707), (1, 0, 0)]),
+    )
+    case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
 
