@@ -106,3 +106,122 @@ fn trace_agrees_with_rtrace() {
         failures.join("\n")
     );
 }
+
+fn run_raw(args: &[&str], input: &[u8]) -> std::process::Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
+        .arg("trace")
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("radc runs");
+    // A refused scene exits before reading its input: a broken pipe is expected then.
+    let _ = child.stdin.take().expect("stdin").write_all(input);
+    child.wait_with_output().expect("radc finishes")
+}
+
+/// `-fdd` and `-fff` carry the same numbers as ASCII, in native byte order.
+#[test]
+fn binary_formats_match_ascii() {
+    let scene = data().join("scenes/sphere_lamp.rad");
+    let scene = scene.to_str().expect("utf-8 path");
+    let rays: [[f64; 6]; 3] = [
+        [0.0, 0.0, 1.0, 0.0, 0.0, -1.0],
+        [1.0, 1.0, 1.0, 0.1, 0.0, -1.0],
+        [0.0, 0.0, 10.0, 0.0, 0.0, 1.0],
+    ];
+    let ascii: String = rays
+        .iter()
+        .map(|r| format!("{} {} {} {} {} {}\n", r[0], r[1], r[2], r[3], r[4], r[5]))
+        .collect();
+    let text = run_raw(&["-h", "-ovL", scene], ascii.as_bytes());
+    let want: Vec<f64> = String::from_utf8_lossy(&text.stdout)
+        .split_whitespace()
+        .map(|w| w.parse().expect("number"))
+        .collect();
+    assert_eq!(want.len(), 12);
+
+    let doubles: Vec<u8> = rays
+        .iter()
+        .flatten()
+        .flat_map(|x| x.to_ne_bytes())
+        .collect();
+    let out = run_raw(&["-h", "-fdd", "-ovL", scene], &doubles);
+    let got: Vec<f64> = out
+        .stdout
+        .chunks(8)
+        .map(|c| f64::from_ne_bytes(c.try_into().expect("8 bytes")))
+        .collect();
+    assert_eq!(got.len(), want.len());
+    for (g, w) in got.iter().zip(&want) {
+        assert!((g - w).abs() <= 1e-6 * w.abs().max(1e-6), "{g} vs {w}");
+    }
+
+    let floats: Vec<u8> = rays
+        .iter()
+        .flatten()
+        .flat_map(|x| (*x as f32).to_ne_bytes())
+        .collect();
+    let out = run_raw(&["-h", "-fff", "-ovL", scene], &floats);
+    let got: Vec<f32> = out
+        .stdout
+        .chunks(4)
+        .map(|c| f32::from_ne_bytes(c.try_into().expect("4 bytes")))
+        .collect();
+    assert_eq!(got.len(), want.len());
+    for (g, w) in got.iter().zip(&want) {
+        assert!(
+            (f64::from(*g) - w).abs() <= 1e-6 * w.abs().max(1e-6),
+            "{g} vs {w}"
+        );
+    }
+}
+
+/// Scenes with errors, and scenes needing what radc cannot render yet, are refused with
+/// a message on stderr and nothing on stdout.
+#[test]
+fn refuses_bad_and_unsupported_scenes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let bad = dir.path().join("bad.rad");
+    std::fs::write(
+        &bad,
+        "void plastic x 0 0 5 1 1 1 0 0\nx sphere s 0 0 3 1 1 1\n",
+    )
+    .expect("write");
+    let out = run_raw(&["-h", bad.to_str().expect("path")], b"0 0 0 1 0 0\n");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("E0202"));
+
+    let glass = dir.path().join("glass.rad");
+    std::fs::write(
+        &glass,
+        "void glass g 0 0 3 .9 .9 .9\ng sphere s 0 0 4 0 0 0 1\n",
+    )
+    .expect("write");
+    let out = run_raw(&["-h", glass.to_str().expect("path")], b"0 0 5 0 0 -1\n");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot render glass 'g'"));
+
+    let out = run_raw(&["-ab", "2", bad.to_str().expect("path")], b"");
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// A zero direction asks for a flush and prints an empty record, as rtrace does.
+#[test]
+fn zero_direction_prints_an_empty_record() {
+    let scene = data().join("scenes/sphere_lamp.rad");
+    let out = run_raw(
+        &["-h", "-ovL", scene.to_str().expect("path")],
+        b"0 0 1 0 0 -1\n0 0 1 0 0 0\n0 0 1 0 0 -1\n",
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3);
+    assert_eq!(
+        lines[1],
+        "0.000000e+00\t0.000000e+00\t0.000000e+00\t1.000000e+10\t"
+    );
+    assert_eq!(lines[0], lines[2]);
+}
