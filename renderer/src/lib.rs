@@ -2,10 +2,12 @@
 //! ray evaluation that reproduces Radiance's rtrace. It sees typed scenes, never text.
 
 pub mod bvh;
+pub mod camera;
 pub mod integrator;
 pub mod lights;
 pub mod materials;
 pub mod math;
+pub mod picture;
 pub mod ray;
 pub mod scene;
 pub mod shapes;

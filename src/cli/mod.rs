@@ -1,6 +1,7 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
 mod check;
+mod render;
 mod report;
 mod trace;
 
@@ -20,6 +21,11 @@ const COMMANDS: &[Command] = &[
         name: "check",
         summary: "check scene files for errors (like oconv, but all errors at once)",
         run: check::run,
+    },
+    Command {
+        name: "render",
+        summary: "render a scene to a Radiance picture, like rpict",
+        run: render::run,
     },
     Command {
         name: "trace",

@@ -121,7 +121,7 @@ struct Args {
 }
 
 /// Radiance's boolean switches: `-x` toggles, `-x+` sets, `-x-` clears.
-fn switch(arg: &str, name: &str, value: &mut bool) -> bool {
+pub(super) fn switch(arg: &str, name: &str, value: &mut bool) -> bool {
     match arg.strip_prefix(name) {
         Some("") => *value = !*value,
         Some("+") => *value = true,
@@ -144,19 +144,13 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
     let mut it = args.iter().map(String::as_str).peekable();
     let mut warn_off = false;
     while let Some(arg) = it.next() {
-        let mut num = |what: &str| -> Result<f64, String> {
-            let v = it.next().ok_or_else(|| format!("{what} needs a value"))?;
-            v.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| format!("{what}: '{v}' is not a number"))
-        };
         match arg {
             s if switch(s, "-h", &mut a.header) => {}
             s if switch(s, "-I", &mut a.irradiance) => {}
-            s if switch(s, "-bv", &mut a.options.backface_visible) => {}
             s if switch(s, "-w", &mut warn_off) => {}
-            s if s.starts_with("-u") || s.starts_with("-dv") => {}
+            "-n" | "-x" | "-y" => {
+                number(&mut it, arg)?;
+            }
             s if s.starts_with("-i") && !s.starts_with("-I") => {
                 let mut on = false;
                 switch(s, "-i", &mut on);
@@ -164,30 +158,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                     return Err("-i (irradiance at hit points) is not supported yet; -I is".into());
                 }
             }
-            "-ab" => {
-                if num("-ab")? != 0.0 {
-                    return Err(
-                        "indirect lighting (-ab > 0) is not implemented yet; use -ab 0 with -av"
-                            .into(),
-                    );
-                }
-            }
-            "-av" => a.options.ambient = Vec3::new(num("-av")?, num("-av")?, num("-av")?),
-            "-ds" => a.options.source_size_ratio = num("-ds")?,
-            "-dj" => {
-                if num("-dj")? != 0.0 {
-                    return Err("source jitter (-dj > 0) is not implemented yet; use -dj 0".into());
-                }
-            }
-            "-lr" => a.options.max_depth = num("-lr")? as i32,
-            "-lw" => a.options.min_weight = num("-lw")?,
-            "-st" => a.options.specular_threshold = num("-st")?,
-            // Accepted for compatibility: radc tests every shadow (-dt 0), has no
-            // virtual sources (-dr 0), and these only matter for indirect light.
-            "-dt" | "-dc" | "-dr" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw"
-            | "-n" | "-x" | "-y" => {
-                num(arg)?;
-            }
+            s if render_option(s, &mut it, &mut a.options)? => {}
             s if s.starts_with("-o") => a.outputs = Output::parse(&s[2..])?,
             s if s.starts_with("-f") => {
                 let f: Vec<char> = s[2..].chars().collect();
@@ -209,6 +180,54 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         return Err("no scene files".into());
     }
     Ok(a)
+}
+
+/// The next argument as a finite number.
+pub(super) fn number<'a>(
+    it: &mut impl Iterator<Item = &'a str>,
+    what: &str,
+) -> Result<f64, String> {
+    let v = it.next().ok_or_else(|| format!("{what} needs a value"))?;
+    v.parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| format!("{what}: '{v}' is not a number"))
+}
+
+/// Rendering options shared with `radc render` (rpict's): true when `arg` was one.
+pub(super) fn render_option<'a>(
+    arg: &str,
+    it: &mut impl Iterator<Item = &'a str>,
+    o: &mut Options,
+) -> Result<bool, String> {
+    match arg {
+        s if switch(s, "-bv", &mut o.backface_visible) => {}
+        "-ab" => {
+            if number(it, "-ab")? != 0.0 {
+                return Err(
+                    "indirect lighting (-ab > 0) is not implemented yet; use -ab 0 with -av".into(),
+                );
+            }
+        }
+        "-av" => o.ambient = Vec3::new(number(it, "-av")?, number(it, "-av")?, number(it, "-av")?),
+        "-ds" => o.source_size_ratio = number(it, "-ds")?,
+        "-dj" => {
+            if number(it, "-dj")? != 0.0 {
+                return Err("source jitter (-dj > 0) is not implemented yet; use -dj 0".into());
+            }
+        }
+        "-lr" => o.max_depth = number(it, "-lr")? as i32,
+        "-lw" => o.min_weight = number(it, "-lw")?,
+        "-st" => o.specular_threshold = number(it, "-st")?,
+        // Accepted for compatibility: radc tests every shadow (-dt 0), has no virtual
+        // sources (-dr 0), and the rest only matter for indirect light.
+        "-dt" | "-dc" | "-dr" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
+            number(it, arg)?;
+        }
+        s if s.starts_with("-u") || s.starts_with("-dv") => {}
+        _ => return Ok(false),
+    }
+    Ok(true)
 }
 
 pub fn run(args: &[String]) -> ExitCode {
