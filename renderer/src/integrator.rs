@@ -5,6 +5,7 @@
 //! light is the constant ambient value (`-ab 0 -av r g b`).
 
 use crate::lights::{SourceSample, SourceTarget};
+use crate::materials::plastic::Normal;
 use crate::materials::{Material, MaterialId};
 use crate::math::{Color, FHUGE, FTINY, Vec3, brightness, intensity};
 use crate::ray::{ObjectId, Ray};
@@ -55,6 +56,8 @@ pub struct Options {
     pub specular_threshold: f64,
     /// `-bv`: back faces are visible (otherwise rays pass through them).
     pub backface_visible: bool,
+    /// `-i`: primary rays report the irradiance at the opaque surfaces they hit.
+    pub irradiance_at_hits: bool,
 }
 
 impl Default for Options {
@@ -67,6 +70,7 @@ impl Default for Options {
             min_weight: 1e-4,
             specular_threshold: 0.15,
             backface_visible: true,
+            irradiance_at_hits: false,
         }
     }
 }
@@ -175,6 +179,14 @@ impl RayState {
     }
 }
 
+/// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
+const LAMBERTIAN: Normal = Normal {
+    color: Color::splat(std::f64::consts::PI),
+    spec: 0.0,
+    rough: 0.0,
+    metal: false,
+};
+
 /// Evaluates rays in a compiled scene.
 pub struct Tracer<'a> {
     scene: &'a Scene,
@@ -219,13 +231,7 @@ impl<'a> Tracer<'a> {
         r.point = r.org + r.dir * r.length;
         r.normal = dir;
         r.rod = 1.0;
-        let lamb = crate::materials::plastic::Normal {
-            color: Color::splat(std::f64::consts::PI),
-            spec: 0.0,
-            rough: 0.0,
-            metal: false,
-        };
-        lamb.shade(self, &mut r);
+        LAMBERTIAN.shade(self, &mut r);
         r
     }
 
@@ -249,7 +255,17 @@ impl<'a> Tracer<'a> {
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
     pub fn shade(&self, r: &mut RayState, material: Option<MaterialId>) {
         r.other_length = r.length;
-        match material.and_then(|m| self.scene.material(m)) {
+        let material = material.and_then(|m| self.scene.material(m));
+        // `-i`: a primary (or passed-through) ray sees every reflecting surface as the
+        // white Lambertian of `-I` (raytrace.c's `raytirrad`); lights stay lights.
+        let primary = r.kind.0 & !(RayKind::PRIMARY.0 | RayKind::TRANS.0) == 0;
+        if self.options.irradiance_at_hits
+            && primary
+            && matches!(material, Some(Material::Normal(_) | Material::Mirror(_)))
+        {
+            return LAMBERTIAN.shade(self, r);
+        }
+        match material {
             Some(Material::Normal(n)) => n.shade(self, r),
             Some(Material::Mirror(m)) => m.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),

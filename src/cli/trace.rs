@@ -151,13 +151,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             "-n" | "-x" | "-y" => {
                 number(&mut it, arg)?;
             }
-            s if s.starts_with("-i") && !s.starts_with("-I") => {
-                let mut on = false;
-                switch(s, "-i", &mut on);
-                if on {
-                    return Err("-i (irradiance at hit points) is not supported yet; -I is".into());
-                }
-            }
+            s if switch(s, "-i", &mut a.options.irradiance_at_hits) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
             s if s.starts_with("-o") => a.outputs = Output::parse(&s[2..])?,
             s if s.starts_with("-f") => {

@@ -124,6 +124,7 @@ def cases():
         ["-I"],
         irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 1], [(0, 0, 1), (-.5, .5, .707), (1, 0, 0)]),
     )
+    case("emitters-hit-irradiance", "emitters.rad", ["-i", "-av", ".1", ".1", ".1"], em_view[:40], "-ov")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
