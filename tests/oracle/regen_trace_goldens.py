@@ -68,6 +68,45 @@ def irradiance_points(rng, n, lo, hi, normals):
     return rays
 
 
+def hard_rays(rng):
+    """Rays at the scene's edges, vertices, seams, tangents and coincident surfaces."""
+    rays = []
+    down, up = [0, 0, -1], [0, 0, 1]
+    # coincident patches, their edges and corners, from above and below
+    for x, y in [(.5, .5), (1.5, 1.5), (2.5, 2.5), (-.5, -.5), (0, 0), (2, 0), (1, 1), (3, 3), (2, 2), (1, 2.5),
+                 (-1.5, -1.5), (-1, -1), (0, 1), (2, 1.5)]:
+        rays.append([x, y, 1] + down)
+        rays.append([x, y, -1] + up)
+    # frame with a hole: inside the hole, on the seam, on the hole's edge, on the frame
+    for x, y in [(-3, -3), (-3.75, -3.75), (-3.5, -3.5), (-3.9, -3), (-2.25, -3), (-3.5, -3), (-2.5, -2.5)]:
+        rays.append([x, y, 2] + down)
+    # in the floor's plane, and starting on it
+    rays += [[-6, .3, 0, 1, 0, 0], [0, 0, 0] + up, [.5, .5, 0] + down, [1.5, 1.5, .001] + up, [4, 4, 0, .3, .2, .9]]
+    # tangent to the ball (centre -2 2 1, radius 1), and just inside or outside it
+    for dz in [0, 1e-7, -1e-7, 1e-3, -1e-3]:
+        rays.append([-6, 2, 2 + dz, 1, 0, 0])
+        rays.append([-2 + 1 + dz, -3, 1, 0, 1, 0])
+    # the nested shell and bubble, from outside and from inside
+    rays += [[2, -2, 3] + down, [2, -2, 1, 1, 0, 0], [2, -2, 1.6, 0, 0, -1], [4, -4, 1, -1, 1, 0]]
+    # the lamp from behind and the lantern from inside
+    rays += [[0, 0, 6] + down, [.5, .5, 5] + down, [3, 3, 1, 1, 0, 0], [3, 3, 1] + down, [3, 3, 3] + down]
+    for _ in range(20):
+        o = [rng.uniform(-4.5, 4.5), rng.uniform(-4.5, 4.5), rng.uniform(.01, 3.5)]
+        rays.append(o + unit(rng))
+    return rays
+
+
+def mirror_rays(rng):
+    """Rays bouncing between the two facing mirrors at x = 4.5 and 4.9."""
+    rays = []
+    for _ in range(30):
+        o = [rng.uniform(4.55, 4.85), rng.uniform(-.8, .8), rng.uniform(.3, 1.9)]
+        a = rng.uniform(-.3, .3)
+        d = [rng.choice([-1, 1]), a, rng.uniform(-.2, .2)]
+        rays.append(o + d)
+    return rays
+
+
 def shift(rays, by):
     return [[r[0] + by[0], r[1] + by[1], r[2] + by[2]] + r[3:] for r in rays]
 
@@ -125,6 +164,14 @@ def cases():
         irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 1], [(0, 0, 1), (-.5, .5, .707), (1, 0, 0)]),
     )
     case("emitters-hit-irradiance", "emitters.rad", ["-i", "-av", ".1", ".1", ".1"], em_view[:40], "-ov")
+    hard = hard_rays(rng)
+    case("hard-view", "hard.rad", ["-av", ".05", ".05", ".05"], hard, "-ovnNL")
+    case("hard-no-backfaces", "hard.rad", ["-bv-"], hard, "-ovL")
+    mirrors = mirror_rays(rng)
+    case("hard-mirrors", "hard.rad", [], mirrors, "-ovlL")
+    case("hard-mirrors-lr3", "hard.rad", ["-lr", "3"], mirrors, "-ov")
+    # A positive -lr: below -lw rtrace would otherwise play (random) Russian roulette.
+    case("hard-mirrors-lw", "hard.rad", ["-lr", "10", "-lw", ".3"], mirrors, "-ov")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
