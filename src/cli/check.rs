@@ -182,12 +182,12 @@ fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
 }
 
 /// Reads, parses and lowers `paths` in order as one scene.
-fn check_scene(
+pub(super) fn check_scene(
     paths: &[PathBuf],
     allow_commands: bool,
     sources: &mut Sources,
     diags: &mut Vec<Diagnostic>,
-) {
+) -> scene::ir::Scene {
     let mut parsed = Vec::new();
     let mut dirs = Vec::new();
     for path in paths {
@@ -227,12 +227,13 @@ fn check_scene(
     let pending = PendingSources::new(sources_len(sources));
     let commands = Commands::new(dirs.clone(), &pending, allow_commands);
     let lookup = SearchPath::new(dirs, &pending);
-    let (_scene, more) = scene::lower_with(&inputs, &lookup, &commands);
+    let (scene, more) = scene::lower_with(&inputs, &lookup, &commands);
     drop((commands, lookup));
     for (name, text) in pending.into_sources() {
         sources.add(name, text);
     }
     diags.extend(more);
+    scene
 }
 
 fn sources_len(sources: &Sources) -> u32 {

@@ -4,13 +4,15 @@ mod calc;
 mod check;
 mod doc;
 mod expand;
+mod fmt;
 // `gen` is a reserved word in edition 2024, so the file is named for the task and the
 // module for what it does.
-mod fmt;
 #[path = "gen.rs"]
 mod generate;
 mod lsp;
+mod render;
 mod report;
+mod trace;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -49,6 +51,16 @@ const COMMANDS: &[Command] = &[
         name: "lsp",
         summary: "run the language server over standard input and output",
         run: lsp::run,
+    },
+    Command {
+        name: "render",
+        summary: "render a scene to a Radiance picture, like rpict",
+        run: render::run,
+    },
+    Command {
+        name: "trace",
+        summary: "trace rays from stdin through a scene, like rtrace",
+        run: trace::run,
     },
     Command {
         name: "help",

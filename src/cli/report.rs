@@ -40,6 +40,25 @@ pub enum Format {
 pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
+    let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    print_to(diags, sources, format, color, &mut out);
+}
+
+/// Diagnostics to stderr, for commands whose stdout carries data (`radc trace`).
+pub fn eprint(diags: &[Diagnostic], sources: &Sources) {
+    let stderr = std::io::stderr();
+    let mut out = stderr.lock();
+    let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    print_to(diags, sources, Format::Human, color, &mut out);
+}
+
+fn print_to(
+    diags: &[Diagnostic],
+    sources: &Sources,
+    format: Format,
+    color: bool,
+    out: &mut impl Write,
+) {
     match format {
         Format::Json => {
             for d in diags {
@@ -47,9 +66,8 @@ pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
             }
         }
         Format::Human => {
-            let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
             for d in diags {
-                human(d, sources, color, &mut out);
+                human(d, sources, color, out);
             }
         }
     }
