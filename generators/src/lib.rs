@@ -1,5 +1,9 @@
 //! Radiance's scene generators, reimplemented to print exactly what the C programs
-//! print: `genbox`, `genprism` and `xform` (`src/gen/*.c` in Radiance).
+//! print: `genbox`, `genprism`, `gensky` and `xform` (`src/gen/*.c` in Radiance).
+//!
+//! "Exactly" is checked against the oracle build (pyradiance), which compiles Radiance
+//! with `-ffast-math`: where that changes a sum's order enough to show in the printed
+//! digits (`normalize()`, `multmat4()`), the code follows the compiled order and says so.
 //!
 //! Each generator is a pure function from its command-line arguments (without the
 //! program name) to the scene text it would write on standard output. Anything from
@@ -9,6 +13,7 @@
 
 pub mod genbox;
 pub mod genprism;
+pub mod gensky;
 mod mesh;
 pub mod printf;
 mod wavefront;
@@ -17,6 +22,7 @@ pub mod xform;
 
 pub use genbox::genbox;
 pub use genprism::genprism;
+pub use gensky::gensky;
 pub use xform::xform;
 
 use std::fmt;

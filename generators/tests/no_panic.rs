@@ -2,7 +2,7 @@
 //! failure is a `GenError`. A small deterministic fuzzer over words that exercise each
 //! option and its edge cases.
 
-use radc_generators::{GenError, Host, genbox, genprism, xform};
+use radc_generators::{GenError, Host, genbox, genprism, gensky, xform};
 
 /// xorshift64*: reproducible without a dependency.
 struct Rng(u64);
@@ -132,6 +132,10 @@ fn random_arguments_never_panic() {
         let _ = genbox(&args);
         let _ = genprism(&args, &mut Files);
         let _ = xform(&args, &mut Files);
+        let _ = gensky(&args);
+        let mut dated = vec!["3".to_string(), "21".into(), "12".into()];
+        dated.extend(args.iter().cloned());
+        let _ = gensky(&dated);
         // Also with a valid start, so the option parsers are reached.
         let mut boxed = vec![
             "m".to_string(),

@@ -1,4 +1,4 @@
-//! `radc genbox`, `radc genprism`, `radc xform`: Radiance's generators, same options,
+//! `radc genbox`, `radc genprism`, `radc gensky`, `radc xform`: Radiance's generators, same options,
 //! same output (see the `radc-generators` crate). This file is the host that gives
 //! them files, standard input and, only with `--allow-commands`, a shell.
 
@@ -8,6 +8,10 @@ use std::process::ExitCode;
 
 pub fn genbox(args: &[String]) -> ExitCode {
     finish("genbox", radc_generators::genbox(args))
+}
+
+pub fn gensky(args: &[String]) -> ExitCode {
+    finish("gensky", radc_generators::gensky(args))
 }
 
 pub fn genprism(args: &[String]) -> ExitCode {

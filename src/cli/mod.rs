@@ -33,6 +33,11 @@ const COMMANDS: &[Command] = &[
         run: generate::genprism,
     },
     Command {
+        name: "gensky",
+        summary: "generate a CIE sky and sun, as Radiance's gensky",
+        run: generate::gensky,
+    },
+    Command {
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,

@@ -1,4 +1,4 @@
-"""Goldens for radc's generators: what real genbox, genprism and xform print.
+"""Goldens for radc's generators: what real genbox, genprism, gensky and xform print.
 
 Runs each case below with the oracle's programs (source tests/oracle/env.sh first, or
 let check_all.sh do it) in tests/data/generators/inputs/, and writes
@@ -58,6 +58,28 @@ CASES = [
     ("genprism-err-flat", "genprism", "m p 3 0 0 1 0 0 1 -l 1 1 0", None),
     ("genprism-err-tall-round", "genprism", "m p 3 0 0 1 0 0 1 -r 2", None),
     ("genprism-err-option", "genprism", "m p 3 0 0 1 0 0 1 -x", None),
+    # gensky: each sky type, date/time forms, time zones, the almanac (-y), units
+    ("gensky-clear", "gensky", "3 21 12", None),
+    ("gensky-defaults", "gensky", "-defaults", None),
+    ("gensky-overcast-zone", "gensky", "6 21 10:30PST -a 37 -o 122 -c", None),
+    ("gensky-intermediate-year", "gensky", "3 21 +12 -y 2020 +i", None),
+    ("gensky-uniform", "gensky", "12 21 9 -u", None),
+    ("gensky-no-sun", "gensky", "7 4 14.5 -s", None),
+    ("gensky-edt", "gensky", "7 4 14.5EDT -a 40.7 -o 74", None),
+    ("gensky-angles", "gensky", "-ang 45 30", None),
+    ("gensky-zenith-clamp", "gensky", "-ang 89 0 +s", None),
+    ("gensky-turbid-intermediate", "gensky", "-ang 30 -120 -i -t 4", None),
+    ("gensky-given-radiances", "gensky", "1 15 8 -r 5e6 -b 10", None),
+    ("gensky-given-irradiances", "gensky", "2 28 16 -R 500 -B 100 -g .3", None),
+    ("gensky-cest-year", "gensky", "9 30 17:45CEST -a 48 -o -11 -y 2024", None),
+    ("gensky-meridian", "gensky", "5 5 5 -m 90 -o 88", None),
+    ("gensky-zone-beats-m", "gensky", "11 11 11GMT -a 51.5 -o 0.1 -m 30", None),
+    ("gensky-night", "gensky", "1 1 2", None),
+    ("gensky-err-month", "gensky", "13 1 12", None),
+    ("gensky-err-zone", "gensky", "3 21 12XYZ", None),
+    ("gensky-err-solar-zone", "gensky", "3 21 +12PST", None),
+    ("gensky-err-count", "gensky", "3 21", None),
+    ("gensky-err-option", "gensky", "3 21 12 -q", None),
     # xform: every transform option, names, modifiers, arrays, commands, mirroring
     ("xform-identity", "xform", "scene.rad", None),
     ("xform-rz", "xform", "-rz 30 scene.rad", None),
