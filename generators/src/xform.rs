@@ -37,6 +37,7 @@ pub fn xform(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
     let mut run = Run {
         host,
         stdin: None,
+        stdin_taken: false,
         depth: 0,
     };
     let mut out = String::new();
@@ -48,6 +49,8 @@ struct Run<'h> {
     host: &'h mut dyn Host,
     /// Standard input, kept because `-a` transforms it once per copy.
     stdin: Option<String>,
+    /// Standard input was read as an argument file (`-f -`), so not as a scene.
+    stdin_taken: bool,
     depth: usize,
 }
 
@@ -69,10 +72,8 @@ struct Settings<'a> {
 impl Run<'_> {
     /// xform's `main()`: `-f` and `-a` rewrite the arguments and call it again.
     fn main(&mut self, args: &[String], out: &mut String) -> Result<(), GenError> {
-        if args.iter().any(|a| a == "-f") {
-            return Err(GenError::Unsupported(
-                "xform: -f (argument file) is not reproduced yet".into(),
-            ));
+        if let Some(fi) = args.iter().position(|a| a == "-f") {
+            return self.argument_file(args, fi, out);
         }
         if let Some(ai) = args.iter().position(|a| a == "-a") {
             return self.array(args, ai, out);
@@ -125,6 +126,9 @@ impl Run<'_> {
         }
         out.push('\n');
         if xac == args.len() {
+            if self.stdin_taken {
+                return Err(GenError::Usage("cannot use stdin more than once".into()));
+            }
             let text = match &self.stdin {
                 Some(t) => t.clone(),
                 None => {
@@ -142,6 +146,71 @@ impl Run<'_> {
             }
             Ok(())
         }
+    }
+
+    /// `-f file`: one transform per line of the file (or `-` for standard input), the
+    /// k-th named `i<k>` (or `<name>.<k>` after `-n name`); blank and `#` lines are
+    /// copied to the output.
+    fn argument_file(
+        &mut self,
+        args: &[String],
+        fi: usize,
+        out: &mut String,
+    ) -> Result<(), GenError> {
+        let missing = || GenError::Usage("missing file for -f option".into());
+        let name = args.get(fi + 1).ok_or_else(missing)?;
+        if name.len() > 1 && name.starts_with('-') {
+            return Err(missing());
+        }
+        let text = if name == "-" {
+            if self.stdin_taken {
+                return Err(GenError::Usage("cannot use stdin more than once".into()));
+            }
+            self.stdin_taken = true;
+            self.host.read_stdin()?
+        } else {
+            let text = self.host.read_file(name)?;
+            let mut lines = Stream::new(&text);
+            let mut n = 0;
+            while let Some(line) = lines.line(COMMAND_LINE) {
+                n += usize::from(!line.is_empty() && !line.starts_with('#'));
+            }
+            if n == 0 {
+                return Err(GenError::Invalid(format!("empty argument file \"{name}\"")));
+            }
+            text
+        };
+        if self.depth >= MAX_DEPTH {
+            return Err(GenError::Invalid("argument files nested too deep".into()));
+        }
+        self.depth += 1;
+        let mut lines = Stream::new(&text);
+        let mut k = 0;
+        let mut result = Ok(());
+        while let Some(line) = lines.line(COMMAND_LINE) {
+            if line.is_empty() || line.starts_with('#') {
+                out.push_str(&line);
+                out.push('\n');
+                continue;
+            }
+            let mut argv: Vec<String> = args[..fi].to_vec();
+            argv.extend(argument_line_words(&line));
+            argv.extend(args[fi + 2..].iter().cloned());
+            match (1..argv.len()).find(|&i| argv[i - 1] == "-n") {
+                Some(i) => argv[i] = format!("{}.{k}", argv[i]),
+                None => {
+                    argv.insert(0, format!("i{k}"));
+                    argv.insert(0, "-n".into());
+                }
+            }
+            result = self.main(&argv, out);
+            if result.is_err() {
+                break;
+            }
+            k += 1;
+        }
+        self.depth -= 1;
+        result
     }
 
     /// `-a N`: N copies, the k-th with `-i k` in place of `-a N` and its names
@@ -264,6 +333,7 @@ impl Run<'_> {
                 let mut nested = Run {
                     host: &mut host,
                     stdin: None,
+                    stdin_taken: false,
                     depth: self.depth,
                 };
                 let mut out = String::new();
@@ -273,6 +343,55 @@ impl Run<'_> {
             _ => self.host.run_command(command, dir),
         }
     }
+}
+
+/// The words of one argument-file line as xform splits them: an optional leading `!`
+/// and `xform ` are skipped; a quote opens a quoted word, and (as in Radiance) every
+/// later word is then read up to the next such quote rather than the next space; a
+/// backslash before a newline joins lines.
+fn argument_line_words(line: &str) -> Vec<String> {
+    let b = line.as_bytes();
+    let mut cp = usize::from(b.first() == Some(&b'!'));
+    if b[cp..].starts_with(b"xform ") {
+        cp += 6;
+    }
+    let mut words = Vec::new();
+    let mut quote: Option<u8> = None;
+    loop {
+        while b.get(cp).is_some_and(|&c| crate::words::is_c_space(c)) {
+            cp += 1;
+        }
+        if let Some(&q @ (b'"' | b'\'')) = b.get(cp) {
+            quote = Some(q);
+            cp += 1;
+        }
+        if cp >= b.len() {
+            break;
+        }
+        if b[cp] == b'\\' && cp + 1 < b.len() {
+            cp += 1;
+            if b[cp] == b'\n' {
+                continue;
+            }
+        }
+        let start = cp;
+        let end = match quote {
+            Some(q) => {
+                let close = b[cp + 1..].iter().position(|&c| c == q).map(|i| cp + 1 + i);
+                cp = close.map_or(b.len(), |i| i + 1);
+                close.unwrap_or(b.len())
+            }
+            None => {
+                cp += 1;
+                while cp < b.len() && !crate::words::is_c_space(b[cp]) {
+                    cp += 1;
+                }
+                cp
+            }
+        };
+        words.push(String::from_utf8_lossy(&b[start..end]).into_owned());
+    }
+    words
 }
 
 /// A host seen from a folder: relative file names are taken from that folder, as xform

@@ -114,6 +114,7 @@ impl Host for Files {
         match path {
             "s.rad" | "sub/s.rad" => Ok("!xform s.rad\nvoid sphere s 0 0 4 1 2 3 1\n".into()),
             "v.txt" => Ok("0 0 1 0 0 1".into()),
+            "args.txt" => Ok("# c\n-t 1 0 0\n!xform \"a b\" -f args.txt\n\\\n-a 2 -rz 5\n!".into()),
             _ => Err(GenError::Host(format!("no {path}"))),
         }
     }
