@@ -11,6 +11,7 @@
 //! scene read by xform) comes through a [`Host`], so the library never does IO itself:
 //! the CLI supplies a host over the file system, tests supply one over strings.
 
+pub mod command;
 pub mod genbox;
 pub mod genprism;
 pub mod gensky;

@@ -314,35 +314,35 @@ impl Run<'_> {
 
     /// The output of one `!` command: a built-in generator if it is one, else the host's.
     fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
-        let Some(words) = simple_words(command) else {
-            return self.host.run_command(command, dir);
+        let builtin = {
+            let mut host = InDir {
+                host: &mut *self.host,
+                dir,
+            };
+            crate::command::run_builtin_at(command, &mut host, self.depth)
         };
-        let Some(program) = words.first() else {
-            return Ok(String::new());
-        };
-        let program = program.rsplit('/').next().unwrap_or(program);
-        let rest = &words[1..];
-        let mut host = InDir {
-            host: &mut *self.host,
-            dir,
-        };
-        match program {
-            "genbox" => crate::genbox(rest),
-            "genprism" => crate::genprism(rest, &mut host),
-            "xform" => {
-                let mut nested = Run {
-                    host: &mut host,
-                    stdin: None,
-                    stdin_taken: false,
-                    depth: self.depth,
-                };
-                let mut out = String::new();
-                nested.main(rest, &mut out)?;
-                Ok(out)
-            }
-            _ => self.host.run_command(command, dir),
+        match builtin {
+            Some(result) => result,
+            None => self.host.run_command(command, dir),
         }
     }
+}
+
+/// xform run from a `!` command inside a scene, `depth` commands deep.
+pub(crate) fn nested(
+    args: &[String],
+    host: &mut dyn Host,
+    depth: usize,
+) -> Result<String, GenError> {
+    let mut run = Run {
+        host,
+        stdin: None,
+        stdin_taken: false,
+        depth,
+    };
+    let mut out = String::new();
+    run.main(args, &mut out)?;
+    Ok(out)
 }
 
 /// The words of one argument-file line as xform splits them: an optional leading `!`
@@ -433,41 +433,6 @@ fn parent_dir(name: &str) -> &str {
         Some(i) => &name[..i],
         None => "",
     }
-}
-
-/// Splits a command into words if it is a plain command line (quotes allowed, no
-/// pipes, redirections, substitutions or variables): only those can be built-ins.
-fn simple_words(command: &str) -> Option<Vec<String>> {
-    let mut words = Vec::new();
-    let mut word: Option<String> = None;
-    let mut quote = None;
-    let mut chars = command.chars();
-    while let Some(c) = chars.next() {
-        match (quote, c) {
-            (Some(q), c) if c == q => quote = None,
-            (Some(_), c) => word.get_or_insert_with(String::new).push(c),
-            (None, '"' | '\'') => {
-                quote = Some(c);
-                word.get_or_insert_with(String::new);
-            }
-            (None, '\\') => {
-                let next = chars.next()?;
-                if next != '\n' {
-                    word.get_or_insert_with(String::new).push(next);
-                }
-            }
-            (None, c) if c.is_whitespace() => words.extend(word.take()),
-            (None, '|' | '&' | ';' | '<' | '>' | '`' | '$' | '(' | ')' | '*' | '?' | '[') => {
-                return None;
-            }
-            (None, c) => word.get_or_insert_with(String::new).push(c),
-        }
-    }
-    if quote.is_some() {
-        return None;
-    }
-    words.extend(word);
-    Some(words)
 }
 
 /// Byte offset of word `k` in the arguments joined by single spaces.

@@ -1,0 +1,107 @@
+//! `!` command lines that name a generator radc has built in.
+//!
+//! Scenes often hold lines like `!genbox wood shelf 1 .3 .02` or `!xform -rz 90 a.rad`.
+//! Radiance hands them to the shell; radc runs the built-in generator instead, with no
+//! process and no shell. A line with shell syntax (pipes, redirection, variables,
+//! globs) or another program is not a built-in: the caller decides what to do.
+
+use crate::{GenError, Host};
+
+/// The programs radc runs itself.
+pub const BUILTINS: &[&str] = &["genbox", "genprism", "gensky", "xform"];
+
+/// The output of `command` (the text after `!`) if it is a plain invocation of a
+/// built-in generator, `None` if it is not one. Files it names are read through `host`.
+pub fn run_builtin(command: &str, host: &mut dyn Host) -> Option<Result<String, GenError>> {
+    run_builtin_at(command, host, 0)
+}
+
+/// [`run_builtin`] from inside xform, `depth` nested commands deep.
+pub(crate) fn run_builtin_at(
+    command: &str,
+    host: &mut dyn Host,
+    depth: usize,
+) -> Option<Result<String, GenError>> {
+    let words = simple_words(command)?;
+    let Some(program) = words.first() else {
+        return Some(Ok(String::new()));
+    };
+    let program = program.rsplit('/').next().unwrap_or(program);
+    let args = &words[1..];
+    Some(match program {
+        "genbox" => crate::genbox(args),
+        "genprism" => crate::genprism(args, host),
+        "gensky" => crate::gensky(args),
+        "xform" => crate::xform::nested(args, host, depth),
+        _ => return None,
+    })
+}
+
+/// Splits a command into words if it is a plain command line (quotes allowed, no
+/// pipes, redirections, substitutions or variables): only those can be built-ins.
+pub fn simple_words(command: &str) -> Option<Vec<String>> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut quote = None;
+    let mut chars = command.chars();
+    while let Some(c) = chars.next() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), c) => word.get_or_insert_with(String::new).push(c),
+            (None, '"' | '\'') => {
+                quote = Some(c);
+                word.get_or_insert_with(String::new);
+            }
+            (None, '\\') => {
+                let next = chars.next()?;
+                if next != '\n' {
+                    word.get_or_insert_with(String::new).push(next);
+                }
+            }
+            (None, c) if c.is_whitespace() => words.extend(word.take()),
+            (None, '|' | '&' | ';' | '<' | '>' | '`' | '$' | '(' | ')' | '*' | '?' | '[') => {
+                return None;
+            }
+            (None, c) => word.get_or_insert_with(String::new).push(c),
+        }
+    }
+    if quote.is_some() {
+        return None;
+    }
+    words.extend(word);
+    Some(words)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::NoHost;
+
+    #[test]
+    fn runs_only_plain_generator_lines() {
+        let out = run_builtin("genbox m b 1 1 1", &mut NoHost);
+        assert!(matches!(out, Some(Ok(text)) if text.starts_with("# genbox m b 1 1 1\n")));
+        let out = run_builtin("/usr/local/bin/gensky -ang 45 0", &mut NoHost);
+        assert!(matches!(out, Some(Ok(text)) if text.contains("skybright.cal")));
+        assert!(run_builtin("cat scene.rad", &mut NoHost).is_none());
+        assert!(run_builtin("genbox m b 1 1 1 | xform -rz 9", &mut NoHost).is_none());
+        assert!(run_builtin("genbox m b $W 1 1", &mut NoHost).is_none());
+        assert!(matches!(
+            run_builtin("genbox m b 0 1 1", &mut NoHost),
+            Some(Err(_))
+        ));
+        assert!(matches!(
+            run_builtin("xform -rz 9 missing.rad", &mut NoHost),
+            Some(Err(_))
+        ));
+    }
+
+    #[test]
+    fn quotes_group_words() {
+        assert_eq!(
+            simple_words("genbox 'my mat' \"a b\" 1\\ 2").unwrap_or_default(),
+            ["genbox", "my mat", "a b", "1 2"]
+        );
+        assert_eq!(simple_words("genbox 'open"), None);
+    }
+}
