@@ -8,9 +8,13 @@ cases and compares.
 
     python tests/oracle/regen_generator_goldens.py           # rewrite the goldens
     python tests/oracle/regen_generator_goldens.py --check   # fail if any would change
+    python tests/oracle/regen_generator_goldens.py --fuzz 500 target/debug/radc
+        # compare radc with the oracle on 500 random invocations (nothing written)
 """
 
 import json
+import math
+import random
 import shlex
 import os
 import subprocess
@@ -136,7 +140,94 @@ def run(program, args, stdin_name):
     return p.returncode, p.stdout.decode()
 
 
+def random_invocation(rng):
+    """A random but valid-looking invocation of one of the generators."""
+    program = rng.choice(["genbox", "genprism", "gensky", "xform"])
+    if program == "genbox":
+        size = [rng.uniform(0.05, 20) for _ in range(3)]
+        args = ["m", "b"] + ["%.4g" % x for x in size]
+        r = rng.random()
+        if r < 0.3:
+            args += ["-b", "%.3g" % rng.uniform(0.001, min(size) / 2)]
+        elif r < 0.7:
+            args += ["-r", "%.3g" % rng.uniform(0.001, min(size) / 2),
+                     "-n", str(rng.choice([1, 2, 3, 4]))]
+            if rng.random() < 0.4:
+                args.append("-s")
+        if rng.random() < 0.3:
+            args.append("-i")
+        if rng.random() < 0.2:
+            args.append("-o")
+    elif program == "genprism":
+        n = rng.randint(3, 8)
+        angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
+        if rng.random() < 0.5:
+            angles.reverse()
+        args = ["m", "p", str(n)]
+        for a in angles:
+            r = rng.uniform(0.5, 3)
+            args += ["%.5g" % (r * math.cos(a)), "%.5g" % (r * math.sin(a))]
+        if rng.random() < 0.6:
+            z = rng.choice([1, -1]) * rng.uniform(0.5, 4)
+            args += ["-l", "%.4g" % rng.uniform(-1, 1), "%.4g" % rng.uniform(-1, 1), "%.4g" % z]
+        if rng.random() < 0.6:
+            args += ["-r", "%.3g" % rng.uniform(0.01, 0.3)]
+        args += [o for o in ("-e", "-c") if rng.random() < 0.2]
+    elif program == "gensky":
+        if rng.random() < 0.2:
+            args = ["-ang", "%.4g" % rng.uniform(-10, 95), "%.4g" % rng.uniform(-180, 180)]
+        else:
+            h = rng.uniform(0, 24)
+            hour = rng.choice(["%.2f" % h, "%d:%02d" % (int(h), rng.randint(0, 59)), "+%.1f" % h])
+            if not hour.startswith("+") and rng.random() < 0.4:
+                hour += rng.choice(["PST", "EST", "CET", "JST", "GMT", "NZDT"])
+            args = [str(rng.randint(1, 12)), str(rng.randint(1, 28)), hour]
+        args.append(rng.choice(["+s", "-s", "-c", "-u", "+i", "-i"]))
+        if rng.random() < 0.3:
+            args += ["-y", str(rng.randint(1950, 2050))]
+        if rng.random() < 0.4:
+            args += ["-a", "%.4g" % rng.uniform(-60, 70), "-o", "%.4g" % rng.uniform(-180, 180)]
+    else:
+        args = ["-I"] if rng.random() < 0.3 else []
+        for _ in range(rng.randint(1, 6)):
+            option = rng.choice(["-t", "-rx", "-ry", "-rz", "-s", "-mx", "-my", "-mz", "-i"])
+            args.append(option)
+            if option == "-t":
+                args += ["%.6g" % rng.uniform(-100, 100) for _ in range(3)]
+            elif option.startswith("-r"):
+                args.append("%.7g" % rng.uniform(-720, 720))
+            elif option == "-s":
+                args.append("%.5g" % rng.choice([rng.uniform(0.001, 1000), -rng.uniform(0.01, 10)]))
+            elif option == "-i":
+                args.append(str(rng.randint(0, 5)))
+        args.append(rng.choice(["scene.rad", "commands.rad"]))
+    return program, args
+
+
+def fuzz(count, radc):
+    """Runs `count` random invocations through the oracle and radc; prints mismatches."""
+    rng = random.Random(count)
+    radc = os.path.abspath(radc)
+    bad = 0
+    for _ in range(count):
+        program, args = random_invocation(rng)
+        want = subprocess.run([program] + args, cwd=INPUTS, stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL)
+        got = subprocess.run([radc, program] + args, cwd=INPUTS, stdout=subprocess.PIPE,
+                             stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL)
+        same = (want.returncode != 0 and got.returncode != 0) or (
+            want.returncode == 0 and got.returncode == 0 and want.stdout == got.stdout)
+        if not same:
+            bad += 1
+            print("differs:", program, shlex.join(args))
+    print(f"{count - bad} of {count} random invocations identical")
+    return 1 if bad else 0
+
+
 def main():
+    if "--fuzz" in sys.argv[1:]:
+        at = sys.argv.index("--fuzz")
+        return fuzz(int(sys.argv[at + 1]), sys.argv[at + 2])
     check = "--check" in sys.argv[1:]
     manifest = []
     outputs = {}
