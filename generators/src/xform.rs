@@ -113,7 +113,7 @@ impl Run<'_> {
         s.xfa = a;
         let words = spanned(&args[a..], offset_of(args, a));
         let (tot, used) =
-            Transform::parse_prefix(&words).map_err(|d| GenError::Transform(Box::new(d)))?;
+            Transform::parse_prefix(&words).map_err(|d| late_option_hint(d, &words))?;
         let xac = a + used;
         s.xav = &args[..xac];
         s.tot = tot;
@@ -433,6 +433,19 @@ fn parent_dir(name: &str) -> &str {
         Some(i) => &name[..i],
         None => "",
     }
+}
+
+/// xform's own options after the transform stop it there; say where they belong.
+fn late_option_hint(d: radc_lang::Diagnostic, words: &[(&str, Span)]) -> GenError {
+    let word = words.iter().find(|(_, span)| *span == d.span).map(|w| w.0);
+    let late = matches!(word, Some("-n" | "-m" | "-c" | "-e" | "-I"));
+    GenError::Transform(Box::new(
+        if late && d.code == radc_lang::diagnostic::E0801 {
+            d.with_hint("xform's -n, -m, -c, -e and -I go before the transform options")
+        } else {
+            d
+        },
+    ))
 }
 
 /// Byte offset of word `k` in the arguments joined by single spaces.
