@@ -108,6 +108,7 @@ CASES = [
     ("xform-commands-mirror", "xform", "-mx -t 0 0 1 commands.rad", None),
     ("xform-commands-kept", "xform", "-c -s 2 commands.rad", None),
     ("xform-commands-kept-named", "xform", "-c -n q -rx 90 commands.rad", None),
+    ("xform-pipeline", "xform", "-s 2 pipes.rad", None),
     ("xform-e", "xform", "-c -e -t 0 0 1 sub/small.rad", None),
     ("xform-two-files", "xform", "-rz 5 sub/small.rad scene.rad", None),
     ("xform-argfile", "xform", "-f placements.txt sub/small.rad", None),
