@@ -4,7 +4,10 @@
 //! spawns a process: the CLI and the language server are the only places that touch
 //! the outside world, so both see exactly the same diagnostics.
 
+pub mod cal;
+pub mod datafile;
 pub mod diagnostic;
+pub mod scene;
 pub mod schema;
 pub mod source;
 pub mod transform;
