@@ -8,7 +8,7 @@
 use crate::{GenError, Host};
 
 /// The programs radc runs itself.
-pub const BUILTINS: &[&str] = &["genbox", "genprism", "gensky", "xform"];
+pub const BUILTINS: &[&str] = &["genbox", "genprism", "gensky", "genworm", "xform"];
 
 /// The output of `command` (the text after `!`) if it is a plain invocation of a
 /// built-in generator, or a pipeline of them (`genbox m b 1 1 1 | xform -rz 90`, each

@@ -1,5 +1,8 @@
 //! Radiance's scene generators, reimplemented to print exactly what the C programs
-//! print: `genbox`, `genprism`, `gensky` and `xform` (`src/gen/*.c` in Radiance).
+//! print: `genbox`, `genprism`, `gensky`, `genworm` and `xform` (`src/gen/*.c` in
+//! Radiance). genworm's curves are calcomp, evaluated by `radc_lang::cal`; deep
+//! calcomp recursion needs a deep stack, so callers run it on a thread with one (as
+//! `radc genworm` and `radc calc` do).
 //!
 //! "Exactly" is checked against the oracle build (pyradiance), which compiles Radiance
 //! with `-ffast-math`: where that changes a sum's order enough to show in the printed
@@ -15,6 +18,7 @@ pub mod command;
 pub mod genbox;
 pub mod genprism;
 pub mod gensky;
+pub mod genworm;
 mod mesh;
 pub mod printf;
 mod wavefront;
@@ -24,6 +28,7 @@ pub mod xform;
 pub use genbox::genbox;
 pub use genprism::genprism;
 pub use gensky::gensky;
+pub use genworm::genworm;
 pub use xform::xform;
 
 use std::fmt;

@@ -2,7 +2,7 @@
 //! failure is a `GenError`. A small deterministic fuzzer over words that exercise each
 //! option and its edge cases.
 
-use radc_generators::{GenError, Host, genbox, genprism, gensky, xform};
+use radc_generators::{GenError, Host, genbox, genprism, gensky, genworm, xform};
 
 /// xorshift64*: reproducible without a dependency.
 struct Rng(u64);
@@ -134,6 +134,15 @@ fn random_arguments_never_panic() {
         let _ = genprism(&args, &mut Files);
         let _ = xform(&args, &mut Files);
         let _ = gensky(&args);
+        if rng.next() % 16 == 0 {
+            // calcomp setup is the slow part; a sample is enough.
+            let _ = genworm(&args, &mut Files);
+            let mut worm: Vec<String> = ["m", "w", "t", "t*t", "sin(t)", ".1", "4"]
+                .map(String::from)
+                .to_vec();
+            worm.extend(args.iter().cloned());
+            let _ = genworm(&worm, &mut Files);
+        }
         let mut dated = vec!["3".to_string(), "21".into(), "12".into()];
         dated.extend(args.iter().cloned());
         let _ = gensky(&dated);

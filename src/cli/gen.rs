@@ -14,6 +14,30 @@ pub fn gensky(args: &[String]) -> ExitCode {
     finish("gensky", radc_generators::gensky(args))
 }
 
+pub fn genworm(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::genworm(&args, &mut host)
+    });
+    finish("genworm", result)
+}
+
+/// calcomp recursion is legal and can be deep (genworm's curves, or a genworm run by a
+/// `!` line inside a scene given to xform): evaluate on a thread with a stack to match,
+/// as `radc calc` does.
+fn with_deep_stack(
+    work: impl FnOnce() -> Result<String, GenError> + Send + 'static,
+) -> Result<String, GenError> {
+    let worker = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(work);
+    match worker.map(|h| h.join()) {
+        Ok(Ok(result)) => result,
+        _ => Err(GenError::Invalid("evaluation failed".into())),
+    }
+}
+
 pub fn genprism(args: &[String]) -> ExitCode {
     let mut host = FileHost::default();
     finish("genprism", radc_generators::genprism(args, &mut host))
@@ -26,11 +50,12 @@ pub fn xform(args: &[String]) -> ExitCode {
     let args = match args.split_first() {
         Some((first, rest)) if first == "--allow-commands" => {
             host.allow_commands = true;
-            rest
+            rest.to_vec()
         }
-        _ => args,
+        _ => args.to_vec(),
     };
-    finish("xform", radc_generators::xform(args, &mut host))
+    let result = with_deep_stack(move || radc_generators::xform(&args, &mut host));
+    finish("xform", result)
 }
 
 fn finish(program: &str, result: Result<String, GenError>) -> ExitCode {

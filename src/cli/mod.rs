@@ -64,6 +64,11 @@ const COMMANDS: &[Command] = &[
         run: generate::gensky,
     },
     Command {
+        name: "genworm",
+        summary: "generate a worm along a calcomp curve, as Radiance's genworm",
+        run: generate::genworm,
+    },
+    Command {
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,

@@ -1,4 +1,5 @@
-"""Goldens for radc's generators: what real genbox, genprism, gensky and xform print.
+"""Goldens for radc's generators: what real genbox, genprism, gensky, genworm and xform
+print.
 
 Runs each case below with the oracle's programs (source tests/oracle/env.sh first, or
 let check_all.sh do it) in tests/data/generators/inputs/, and writes
@@ -84,6 +85,17 @@ CASES = [
     ("gensky-err-solar-zone", "gensky", "3 21 +12PST", None),
     ("gensky-err-count", "gensky", "3 21", None),
     ("gensky-err-option", "gensky", "3 21 12 -q", None),
+    # genworm: calcomp curves, cylinders for equal radii, cones otherwise, -e and -f
+    ("genworm-circle", "genworm", "m w cos(2*PI*t) sin(2*PI*t) t .1+.05*t 4", None),
+    ("genworm-line", "genworm", "m w t 0 0 .1 3", None),
+    ("genworm-parabola", "genworm", "m w t t*t 0 .2-.1*t 10", None),
+    ("genworm-splines", "genworm", "m w bezier(0,1,2,3,t) hermite(0,1,1,0,t) bspline(0,1,0,1,t) .05 7", None),
+    ("genworm-defs", "genworm", "m w a*t 0 0 r 2 -e a=3 -e r:.2", None),
+    ("genworm-rounded-nseg", "genworm", "m w t 0 0 .1 2.4", None),
+    ("genworm-file", "genworm", "m h hx(t) hy(t) t rad(t) 12 -f helix.cal", None),
+    ("genworm-err-nseg", "genworm", "m w t 0 0 .1 0", None),
+    ("genworm-err-undefined", "genworm", "m w t 0 0 .1 x", None),
+    ("genworm-err-option", "genworm", "m w t 0 0 .1 3 -q", None),
     # xform: every transform option, names, modifiers, arrays, commands, mirroring
     ("xform-identity", "xform", "scene.rad", None),
     ("xform-rz", "xform", "-rz 30 scene.rad", None),
@@ -143,7 +155,7 @@ def run(program, args, stdin_name):
 
 def random_invocation(rng):
     """A random but valid-looking invocation of one of the generators."""
-    program = rng.choice(["genbox", "genprism", "gensky", "xform"])
+    program = rng.choice(["genbox", "genprism", "gensky", "genworm", "xform"])
     if program == "genbox":
         size = [rng.uniform(0.05, 20) for _ in range(3)]
         args = ["m", "b"] + ["%.4g" % x for x in size]
@@ -174,6 +186,14 @@ def random_invocation(rng):
         if rng.random() < 0.6:
             args += ["-r", "%.3g" % rng.uniform(0.01, 0.3)]
         args += [o for o in ("-e", "-c") if rng.random() < 0.2]
+    elif program == "genworm":
+        terms = ["t", "t*t", "cos(%d*PI*t)", "sin(%d*PI*t)", "exp(-t)", "sqrt(t+1)",
+                 "bezier(0,%d,1,0,t)", "hermite(1,0,%d,1,t)", "bspline(0,1,%d,0,t)"]
+        def curve():
+            term = rng.choice(terms)
+            return ("%.3g*" % rng.uniform(-3, 3)) + (term % rng.randint(1, 4) if "%d" in term else term)
+        radius = rng.choice([".1", ".05+.05*t", "%.3g" % rng.uniform(0.01, 0.3), ".1*(1+%s)" % curve()])
+        args = ["m", "w", curve(), curve(), curve(), radius, str(rng.randint(1, 20))]
     elif program == "gensky":
         if rng.random() < 0.2:
             args = ["-ang", "%.4g" % rng.uniform(-10, 95), "%.4g" % rng.uniform(-180, 180)]
