@@ -50,6 +50,7 @@ pub(crate) fn run_builtin_at(
             "genbox" => crate::genbox(args),
             "genprism" => crate::genprism(args, &mut stage_host),
             "gensky" => crate::gensky(args),
+            "genworm" => crate::genworm(args, &mut stage_host),
             "xform" => crate::xform::nested(args, &mut stage_host, depth),
             _ => return None,
         };

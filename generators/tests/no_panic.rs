@@ -134,7 +134,7 @@ fn random_arguments_never_panic() {
         let _ = genprism(&args, &mut Files);
         let _ = xform(&args, &mut Files);
         let _ = gensky(&args);
-        if rng.next() % 16 == 0 {
+        if rng.next().is_multiple_of(16) {
             // calcomp setup is the slow part; a sample is enough.
             let _ = genworm(&args, &mut Files);
             let mut worm: Vec<String> = ["m", "w", "t", "t*t", "sin(t)", ".1", "4"]
