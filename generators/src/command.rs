@@ -8,7 +8,7 @@
 use crate::{GenError, Host};
 
 /// The programs radc runs itself.
-pub const BUILTINS: &[&str] = &["genbox", "genprism", "gensky", "genworm", "xform"];
+pub const BUILTINS: &[&str] = &["genbox", "genprism", "genrev", "gensky", "genworm", "xform"];
 
 /// The output of `command` (the text after `!`) if it is a plain invocation of a
 /// built-in generator, or a pipeline of them (`genbox m b 1 1 1 | xform -rz 90`, each
@@ -49,6 +49,7 @@ pub(crate) fn run_builtin_at(
         let result = match program_name(program) {
             "genbox" => crate::genbox(args),
             "genprism" => crate::genprism(args, &mut stage_host),
+            "genrev" => crate::genrev(args, &mut stage_host),
             "gensky" => crate::gensky(args),
             "genworm" => crate::genworm(args, &mut stage_host),
             "xform" => crate::xform::nested(args, &mut stage_host, depth),

@@ -15,8 +15,10 @@
 //! the CLI supplies a host over the file system, tests supply one over strings.
 
 pub mod command;
+mod curves;
 pub mod genbox;
 pub mod genprism;
+pub mod genrev;
 pub mod gensky;
 pub mod genworm;
 mod mesh;
@@ -27,6 +29,7 @@ pub mod xform;
 
 pub use genbox::genbox;
 pub use genprism::genprism;
+pub use genrev::genrev;
 pub use gensky::gensky;
 pub use genworm::genworm;
 pub use xform::xform;

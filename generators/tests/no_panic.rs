@@ -2,7 +2,7 @@
 //! failure is a `GenError`. A small deterministic fuzzer over words that exercise each
 //! option and its edge cases.
 
-use radc_generators::{GenError, Host, genbox, genprism, gensky, genworm, xform};
+use radc_generators::{GenError, Host, genbox, genprism, genrev, gensky, genworm, xform};
 
 /// xorshift64*: reproducible without a dependency.
 struct Rng(u64);
@@ -137,6 +137,10 @@ fn random_arguments_never_panic() {
         if rng.next().is_multiple_of(16) {
             // calcomp setup is the slow part; a sample is enough.
             let _ = genworm(&args, &mut Files);
+            let _ = genrev(&args, &mut Files);
+            let mut rev: Vec<String> = ["m", "v", "t", "1+t*t", "5"].map(String::from).to_vec();
+            rev.extend(args.iter().cloned());
+            let _ = genrev(&rev, &mut Files);
             let mut worm: Vec<String> = ["m", "w", "t", "t*t", "sin(t)", ".1", "4"]
                 .map(String::from)
                 .to_vec();

@@ -64,6 +64,11 @@ const COMMANDS: &[Command] = &[
         run: generate::gensky,
     },
     Command {
+        name: "genrev",
+        summary: "generate a surface of revolution, as Radiance's genrev",
+        run: generate::genrev,
+    },
+    Command {
         name: "genworm",
         summary: "generate a worm along a calcomp curve, as Radiance's genworm",
         run: generate::genworm,

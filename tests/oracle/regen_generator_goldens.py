@@ -1,5 +1,5 @@
-"""Goldens for radc's generators: what real genbox, genprism, gensky, genworm and xform
-print.
+"""Goldens for radc's generators: what real genbox, genprism, genrev, gensky, genworm and
+xform print.
 
 Runs each case below with the oracle's programs (source tests/oracle/env.sh first, or
 let check_all.sh do it) in tests/data/generators/inputs/, and writes
@@ -96,6 +96,21 @@ CASES = [
     ("genworm-err-nseg", "genworm", "m w t 0 0 .1 0", None),
     ("genworm-err-undefined", "genworm", "m w t 0 0 .1 x", None),
     ("genworm-err-option", "genworm", "m w t 0 0 .1 3 -q", None),
+    # genrev: cylinders, tubes, cones, cups, rings; -s Phong smoothing; -e and -f
+    ("genrev-cylinder", "genrev", "m v t .5 4", None),
+    ("genrev-cone", "genrev", "m v t 1-t 5", None),
+    ("genrev-tube", "genrev", "m v 1-t .3 3", None),
+    ("genrev-rings", "genrev", "m v 0 t 4", None),
+    ("genrev-rings-in", "genrev", "m v 0 1-t 4", None),
+    ("genrev-sphere", "genrev", "m v sin(PI*t) cos(PI*t) 8", None),
+    ("genrev-sphere-smooth", "genrev", "m v sin(PI*t) cos(PI*t) 8 -s", None),
+    ("genrev-vase-smooth", "genrev", "m v t .5+.2*sin(2*PI*t) 10 -s", None),
+    ("genrev-bezier-smooth", "genrev", "m v t bezier(.2,1,.5,.1,t) 6 -s", None),
+    ("genrev-defs", "genrev", "m v a*t r 3 -e a=2 -e r:.4", None),
+    ("genrev-file", "genrev", "m v hx(t) rad(t)+1 5 -f helix.cal", None),
+    ("genrev-degenerate", "genrev", "m v 1 1 3 -s", None),
+    ("genrev-err-nseg", "genrev", "m v t t*t 0", None),
+    ("genrev-err-option", "genrev", "m v t t 3 -q", None),
     # xform: every transform option, names, modifiers, arrays, commands, mirroring
     ("xform-identity", "xform", "scene.rad", None),
     ("xform-rz", "xform", "-rz 30 scene.rad", None),
@@ -155,7 +170,7 @@ def run(program, args, stdin_name):
 
 def random_invocation(rng):
     """A random but valid-looking invocation of one of the generators."""
-    program = rng.choice(["genbox", "genprism", "gensky", "genworm", "xform"])
+    program = rng.choice(["genbox", "genprism", "genrev", "gensky", "genworm", "xform"])
     if program == "genbox":
         size = [rng.uniform(0.05, 20) for _ in range(3)]
         args = ["m", "b"] + ["%.4g" % x for x in size]
@@ -186,14 +201,20 @@ def random_invocation(rng):
         if rng.random() < 0.6:
             args += ["-r", "%.3g" % rng.uniform(0.01, 0.3)]
         args += [o for o in ("-e", "-c") if rng.random() < 0.2]
-    elif program == "genworm":
+    elif program in ("genworm", "genrev"):
         terms = ["t", "t*t", "cos(%d*PI*t)", "sin(%d*PI*t)", "exp(-t)", "sqrt(t+1)",
                  "bezier(0,%d,1,0,t)", "hermite(1,0,%d,1,t)", "bspline(0,1,%d,0,t)"]
         def curve():
             term = rng.choice(terms)
             return ("%.3g*" % rng.uniform(-3, 3)) + (term % rng.randint(1, 4) if "%d" in term else term)
         radius = rng.choice([".1", ".05+.05*t", "%.3g" % rng.uniform(0.01, 0.3), ".1*(1+%s)" % curve()])
-        args = ["m", "w", curve(), curve(), curve(), radius, str(rng.randint(1, 20))]
+        if program == "genworm":
+            args = ["m", "w", curve(), curve(), curve(), radius, str(rng.randint(1, 20))]
+        else:
+            z = rng.choice(["t", "1-t", curve(), "%.3g" % rng.uniform(0, 1)])
+            args = ["m", "v", z, "1+" + curve(), str(rng.randint(1, 20))]
+            if rng.random() < 0.4:
+                args.append("-s")
     elif program == "gensky":
         if rng.random() < 0.2:
             args = ["-ang", "%.4g" % rng.uniform(-10, 95), "%.4g" % rng.uniform(-180, 180)]
