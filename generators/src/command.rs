@@ -8,7 +8,9 @@
 use crate::{GenError, Host};
 
 /// The programs radc runs itself.
-pub const BUILTINS: &[&str] = &["genbox", "genprism", "genrev", "gensky", "genworm", "xform"];
+pub const BUILTINS: &[&str] = &[
+    "genbox", "genprism", "genrev", "gensky", "gensurf", "genworm", "xform",
+];
 
 /// The output of `command` (the text after `!`) if it is a plain invocation of a
 /// built-in generator, or a pipeline of them (`genbox m b 1 1 1 | xform -rz 90`, each
@@ -51,6 +53,7 @@ pub(crate) fn run_builtin_at(
             "genprism" => crate::genprism(args, &mut stage_host),
             "genrev" => crate::genrev(args, &mut stage_host),
             "gensky" => crate::gensky(args),
+            "gensurf" => crate::gensurf(args, &mut stage_host),
             "genworm" => crate::genworm(args, &mut stage_host),
             "xform" => crate::xform::nested(args, &mut stage_host, depth),
             _ => return None,

@@ -25,14 +25,18 @@ bezier(p0,p1,p2,p3,t) : t*(t*(p3*t + (1-t)*I`SYS`(3*p2)) + ((t-2)*t+1)*I`SYS`(3*
 bspline(p0,p1,p2,p3,t) : I`SYS`(p3*t)*I`SYS`(I`SYS`(t*t)*(1/6)) + p1*((0.5*t-1)*I`SYS`(t*t)+2/3) + I`SYS`(p0*(((0.5-(1/6)*t)*t-0.5)*t+1/6) + p2*((1+(1-t)*t)*I`SYS`(0.5*t)+1/6));
 ";
 
-/// The parameter's name: a context-qualified name no user file can define.
-const PARAMETER: &str = "T`SYS`";
-
 pub(crate) struct CurveProgram {
     module: Module,
-    parameter: Option<DefId>,
+    /// The parameters' variables (`S`SYS``, `T`SYS``), set before each evaluation.
+    parameters: Vec<DefId>,
+    /// Output channels 1..=curves hold the curves at the parameters.
     curves: u32,
+    /// Channels of expressions evaluated once (segment counts).
+    next_channel: u32,
 }
+
+/// Channels from here on hold one-off expressions; curves use 1, 2, ...
+const FIRST_EXPRESSION_CHANNEL: u32 = 1000;
 
 impl CurveProgram {
     pub fn new() -> Result<Self, GenError> {
@@ -40,8 +44,9 @@ impl CurveProgram {
         module.set_constant("PI", std::f64::consts::PI);
         let mut p = CurveProgram {
             module,
-            parameter: None,
+            parameters: Vec::new(),
             curves: 0,
+            next_channel: FIRST_EXPRESSION_CHANNEL,
         };
         p.compile(SPLINES, "the spline functions")?;
         Ok(p)
@@ -56,34 +61,65 @@ impl CurveProgram {
         }
     }
 
-    /// Defines `<name>`SYS`(t)` for each curve, then the segment-count expression.
-    pub fn finish(&mut self, curves: &[(&str, &str)], count: &str) -> Result<(), GenError> {
+    /// `eval(text)`: an expression's value with the definitions made so far.
+    pub fn eval(&mut self, text: &str) -> Result<f64, GenError> {
+        let channel = self.next_channel;
+        self.next_channel += 1;
+        self.compile(&format!("${channel}={text};"), text)?;
+        self.evaluator().channel(channel)
+    }
+
+    /// Defines `<name>`SYS`(<parameters>)` for each curve, plus output channels that
+    /// evaluate them (and any `extra` functions of the same parameters) at the
+    /// parameter variables.
+    pub fn define(
+        &mut self,
+        parameters: &[&str],
+        curves: &[(&str, &str)],
+        extra: &[&str],
+    ) -> Result<(), GenError> {
+        let list = parameters.join(",");
         for (name, body) in curves {
-            self.compile(&format!("{name}`SYS`(t)={body};"), body)?;
+            self.compile(&format!("{name}`SYS`({list})={body};"), body)?;
         }
-        self.module.set_variable(PARAMETER, 0.0);
+        let variables: Vec<String> = parameters
+            .iter()
+            .map(|p| format!("{}`SYS`", p.to_uppercase()))
+            .collect();
+        for v in &variables {
+            self.module.set_variable(v, 0.0);
+        }
+        let call_args = variables.join(",");
         let mut outputs = String::new();
-        for (k, (name, _)) in curves.iter().enumerate() {
-            outputs.push_str(&format!("${}={name}`SYS`({PARAMETER});", k + 1));
+        let names = curves
+            .iter()
+            .map(|(name, _)| format!("{name}`SYS`"))
+            .chain(extra.iter().map(|e| e.to_string()));
+        for (k, name) in names.enumerate() {
+            outputs.push_str(&format!("${}={name}({call_args});", k + 1));
         }
         self.compile(&outputs, "the curves")?;
-        self.curves = curves.len() as u32;
-        self.compile(&format!("${}={count};", self.curves + 1), count)?;
-        self.parameter = self
-            .module
-            .lookup(PARAMETER)
-            .and_then(|s| self.module.current_def(s));
+        self.curves = (curves.len() + extra.len()) as u32;
+        self.parameters = variables
+            .iter()
+            .filter_map(|v| {
+                self.module
+                    .lookup(v)
+                    .and_then(|s| self.module.current_def(s))
+            })
+            .collect();
         Ok(())
     }
 
-    /// The segment count expression's value (`eval(argv[n])`), computed before the
-    /// program is optimized, as the C generators do.
-    pub fn count(&self) -> Result<f64, GenError> {
-        self.evaluator().count()
+    /// The number of parameters of a user function, if `name` is one (`fundefined`).
+    pub fn function_arity(&self, name: &str) -> Option<usize> {
+        let sym = self.module.lookup(name)?;
+        let def = self.module.current_def(sym)?;
+        self.module.def(def).params.as_ref().map(Vec::len)
     }
 
     /// `doptimize(1)`: flatten sums and products, folding their numbers. The
-    /// generators call it after reading the segment count, before the curves.
+    /// generators call it after reading their counts, before evaluating the curves.
     pub fn optimize(&mut self) {
         self.module.optimize();
     }
@@ -114,18 +150,27 @@ impl CurveEval<'_> {
             .map_err(|e| GenError::Invalid(format!("calcomp: {e}")))
     }
 
-    /// The segment count expression's value (`eval(argv[n])`).
-    pub fn count(&mut self) -> Result<f64, GenError> {
-        self.channel(self.program.curves + 1)
+    /// Every curve at the given parameter values (`funvalue(name, n, args)` for each).
+    pub fn at(&mut self, parameters: &[f64]) -> Result<Vec<f64>, GenError> {
+        if parameters.len() != self.program.parameters.len() {
+            return Err(GenError::Invalid("curves not defined".into()));
+        }
+        for (&def, &value) in self.program.parameters.iter().zip(parameters) {
+            self.ev.set_value(def, value);
+        }
+        (1..=self.program.curves).map(|c| self.channel(c)).collect()
     }
 
-    /// Every curve at `t` (`funvalue(name, 1, &t)` for each).
-    pub fn at(&mut self, t: f64) -> Result<Vec<f64>, GenError> {
-        let parameter = self
-            .program
-            .parameter
-            .ok_or_else(|| GenError::Invalid("curves not defined".into()))?;
-        self.ev.set_value(parameter, t);
-        (1..=self.program.curves).map(|c| self.channel(c)).collect()
+    /// Only curve `k` (1-based) at the parameters last set by [`CurveEval::at`] or
+    /// [`CurveEval::set`].
+    pub fn curve(&mut self, k: u32) -> Result<f64, GenError> {
+        self.channel(k)
+    }
+
+    /// Sets the parameters without evaluating.
+    pub fn set(&mut self, parameters: &[f64]) {
+        for (&def, &value) in self.program.parameters.iter().zip(parameters) {
+            self.ev.set_value(def, value);
+        }
     }
 }

@@ -70,8 +70,8 @@ pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, GenError> 
         }
         i += 1;
     }
-    program.finish(&[("Z", &args[2]), ("R", &args[3])], &args[4])?;
-    let nseg = (program.count()? + 0.5) as i64;
+    program.define(&["t"], &[("Z", &args[2]), ("R", &args[3])], &[])?;
+    let nseg = (program.eval(&args[4])? + 0.5) as i64;
     if nseg <= 0 {
         return Err(usage());
     }
@@ -86,7 +86,7 @@ pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, GenError> 
     let modifier = if smooth { "Phong" } else { material.as_str() };
     let mut out = command_comment("genrev", args);
     let at = |ev: &mut crate::curves::CurveEval<'_>, t: f64| -> Result<(f64, f64), GenError> {
-        let v = ev.at(t)?;
+        let v = ev.at(&[t])?;
         Ok((v[0], v[1]))
     };
     // The oracle's -ffast-math build computes `(i+1)/nseg` as `(i+1) * (1/nseg)`.

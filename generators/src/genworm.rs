@@ -39,8 +39,8 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
         .into_iter()
         .zip(args[2..6].iter().map(String::as_str))
         .collect();
-    program.finish(&curves, &args[6])?;
-    let nseg = (program.count()? + 0.5) as i64;
+    program.define(&["t"], &curves, &[])?;
+    let nseg = (program.eval(&args[6])? + 0.5) as i64;
     if nseg <= 0 {
         return Err(usage());
     }
@@ -59,7 +59,7 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
     let step = 1.0 / nseg as f64;
     for i in 0..=nseg {
         let t = i as f64 * step;
-        let v = ev.at(t)?;
+        let v = ev.at(&[t])?;
         let (p, r) = ([v[0], v[1], v[2]], v[3]);
         if i > 0 {
             if lastr <= r + FTINY && lastr >= r - FTINY {

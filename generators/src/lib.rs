@@ -1,8 +1,9 @@
 //! Radiance's scene generators, reimplemented to print exactly what the C programs
-//! print: `genbox`, `genprism`, `gensky`, `genworm` and `xform` (`src/gen/*.c` in
-//! Radiance). genworm's curves are calcomp, evaluated by `radc_lang::cal`; deep
-//! calcomp recursion needs a deep stack, so callers run it on a thread with one (as
-//! `radc genworm` and `radc calc` do).
+//! print: `genbox`, `genprism`, `genrev`, `gensky`, `gensurf` (not `-s` yet),
+//! `genworm` and `xform` (`src/gen/*.c` in Radiance). The curves of genrev, gensurf
+//! and genworm are calcomp, evaluated by `radc_lang::cal`; deep calcomp recursion
+//! needs a deep stack, so callers run those on a thread with one (as `radc genworm`
+//! and `radc calc` do).
 //!
 //! "Exactly" is checked against the oracle build (pyradiance), which compiles Radiance
 //! with `-ffast-math`: where that changes a sum's order enough to show in the printed
@@ -20,6 +21,7 @@ pub mod genbox;
 pub mod genprism;
 pub mod genrev;
 pub mod gensky;
+pub mod gensurf;
 pub mod genworm;
 mod mesh;
 pub mod printf;
@@ -31,6 +33,7 @@ pub use genbox::genbox;
 pub use genprism::genprism;
 pub use genrev::genrev;
 pub use gensky::gensky;
+pub use gensurf::gensurf;
 pub use genworm::genworm;
 pub use xform::xform;
 

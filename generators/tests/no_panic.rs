@@ -2,7 +2,7 @@
 //! failure is a `GenError`. A small deterministic fuzzer over words that exercise each
 //! option and its edge cases.
 
-use radc_generators::{GenError, Host, genbox, genprism, genrev, gensky, genworm, xform};
+use radc_generators::{GenError, Host, genbox, genprism, genrev, gensky, gensurf, genworm, xform};
 
 /// xorshift64*: reproducible without a dependency.
 struct Rng(u64);
@@ -141,6 +141,12 @@ fn random_arguments_never_panic() {
             let mut rev: Vec<String> = ["m", "v", "t", "1+t*t", "5"].map(String::from).to_vec();
             rev.extend(args.iter().cloned());
             let _ = genrev(&rev, &mut Files);
+            let _ = gensurf(&args, &mut Files);
+            let mut surf: Vec<String> = ["m", "s", "s", "t", "v.txt", "2", "1"]
+                .map(String::from)
+                .to_vec();
+            surf.extend(args.iter().cloned());
+            let _ = gensurf(&surf, &mut Files);
             let mut worm: Vec<String> = ["m", "w", "t", "t*t", "sin(t)", ".1", "4"]
                 .map(String::from)
                 .to_vec();

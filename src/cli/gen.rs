@@ -32,6 +32,15 @@ pub fn genrev(args: &[String]) -> ExitCode {
     finish("genrev", result)
 }
 
+pub fn gensurf(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::gensurf(&args, &mut host)
+    });
+    finish("gensurf", result)
+}
+
 /// calcomp recursion is legal and can be deep (genworm's curves, or a genworm run by a
 /// `!` line inside a scene given to xform): evaluate on a thread with a stack to match,
 /// as `radc calc` does.

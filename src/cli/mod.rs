@@ -69,6 +69,11 @@ const COMMANDS: &[Command] = &[
         run: generate::genrev,
     },
     Command {
+        name: "gensurf",
+        summary: "generate a parametric surface, as Radiance's gensurf",
+        run: generate::gensurf,
+    },
+    Command {
         name: "genworm",
         summary: "generate a worm along a calcomp curve, as Radiance's genworm",
         run: generate::genworm,

@@ -111,6 +111,23 @@ CASES = [
     ("genrev-degenerate", "genrev", "m v 1 1 3 -s", None),
     ("genrev-err-nseg", "genrev", "m v t t*t 0", None),
     ("genrev-err-option", "genrev", "m v t t 3 -q", None),
+    # gensurf: function surfaces (flat cells as quads), valid(), -i, -o, data files
+    ("gensurf-plane", "gensurf", "m s s t 0 2 3", None),
+    ("gensurf-saddle", "gensurf", "m s s t s*t 3 2", None),
+    ("gensurf-cylinder", "gensurf", "m s cos(PI*s) sin(PI*s) t 4 3", None),
+    ("gensurf-bowl-inverted", "gensurf", "m s s t s*s+t*t 3 3 -i", None),
+    ("gensurf-bowl-obj", "gensurf", "m s s t s*s+t*t 3 3 -o", None),
+    ("gensurf-valid", "gensurf", "m s s t s*t 2 2 -e valid(s,t)=.8-s*t", None),
+    ("gensurf-valid-obj", "gensurf", "m s s t s*t 2 2 -o -e valid(s,t)=.8-s*t", None),
+    ("gensurf-sphere", "gensurf",
+     "m s sin(PI*s)*cos(2*PI*t) sin(PI*s)*sin(2*PI*t) cos(PI*s) 6 8", None),
+    ("gensurf-heights", "gensurf", "m h s t heights.dat 2 2", None),
+    ("gensurf-heights-cells", "gensurf", "m h 3*s 2*t heights-cells.dat 2 2", None),
+    ("gensurf-heights-noborder", "gensurf", "m h s t heights.dat 3 3", None),
+    ("gensurf-points", "gensurf", "m p points.dat points.dat points.dat 2 2", None),
+    ("gensurf-heights-stdin", "gensurf", "m h s t - 2 2", "heights.dat"),
+    ("gensurf-err-count", "gensurf", "m s s t 0 0 3", None),
+    ("gensurf-err-data", "gensurf", "m h s t heights.dat 4 6", None),
     # xform: every transform option, names, modifiers, arrays, commands, mirroring
     ("xform-identity", "xform", "scene.rad", None),
     ("xform-rz", "xform", "-rz 30 scene.rad", None),
@@ -170,7 +187,8 @@ def run(program, args, stdin_name):
 
 def random_invocation(rng):
     """A random but valid-looking invocation of one of the generators."""
-    program = rng.choice(["genbox", "genprism", "genrev", "gensky", "genworm", "xform"])
+    program = rng.choice(["genbox", "genprism", "genrev", "gensky", "gensurf", "genworm",
+                          "xform"])
     if program == "genbox":
         size = [rng.uniform(0.05, 20) for _ in range(3)]
         args = ["m", "b"] + ["%.4g" % x for x in size]
@@ -201,6 +219,16 @@ def random_invocation(rng):
         if rng.random() < 0.6:
             args += ["-r", "%.3g" % rng.uniform(0.01, 0.3)]
         args += [o for o in ("-e", "-c") if rng.random() < 0.2]
+    elif program == "gensurf":
+        terms = ["s", "t", "s*t", "s*s-t", "cos(%d*PI*s)", "sin(%d*PI*t)", "exp(-s*t)",
+                 "bezier(0,%d,1,0,s)", "hermite(1,0,%d,1,t)", "bspline(0,1,%d,0,s)"]
+        def term():
+            x = rng.choice(terms)
+            return ("%.3g*" % rng.uniform(-3, 3)) + (x % rng.randint(1, 4) if "%d" in x else x)
+        args = ["m", "s", term(), term(), term(), str(rng.randint(1, 6)), str(rng.randint(1, 6))]
+        args += [o for o in ("-i", "-o") if rng.random() < 0.3]
+        if rng.random() < 0.2:
+            args += ["-e", "valid(s,t)=%.3g-s*t" % rng.uniform(0.2, 1)]
     elif program in ("genworm", "genrev"):
         terms = ["t", "t*t", "cos(%d*PI*t)", "sin(%d*PI*t)", "exp(-t)", "sqrt(t+1)",
                  "bezier(0,%d,1,0,t)", "hermite(1,0,%d,1,t)", "bspline(0,1,%d,0,t)"]

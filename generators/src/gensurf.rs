@@ -1,0 +1,394 @@
+//! `gensurf material name x(s,t) y(s,t) z(s,t) m n [-e expr] [-f file] [-i] [-o]`
+//!
+//! Reproduces Radiance's `src/gen/gensurf.c`: the parametric surface `(x, y, z)(s, t)`,
+//! `s` and `t` from 0 to 1 in `m` and `n` steps, as quadrilaterals where a cell is flat
+//! and pairs of triangles where it is not, the normal following the right-hand rule in
+//! (s, t) (`-i` reverses it). A `valid(s,t)` function, if defined, drops vertices where
+//! it is not positive. `z` (or all three, when the same name is given for x, y and z)
+//! may name a data file of values on the grid, bilinearly interpolated. `-o` writes
+//! Wavefront `.OBJ` instead. `-s` (Phong smoothing) is not reproduced yet.
+
+use crate::curves::{CurveEval, CurveProgram};
+use crate::mesh::{cross, normalize, sub};
+use crate::printf::{g, g_body};
+use crate::words::{Stream, atof, is_flt};
+use crate::{GenError, Host, command_comment};
+
+const USAGE: &str = "gensurf material name x(s,t) y(s,t) z(s,t) m n [-s][-o][-e expr][-f file]";
+const FTINY: f64 = 1e-6;
+/// More grid points than this are refused rather than filling memory.
+const MAX_POINTS: i64 = 100_000_000;
+
+/// A grid point (`POINT`): whether it is valid (in `.OBJ` output, its vertex number),
+/// its position and its (s, t).
+#[derive(Clone, Copy, Default)]
+struct Point {
+    valid: i64,
+    p: [f64; 3],
+    uv: [f64; 2],
+}
+
+/// Values on the grid from a data file (`datarec`), s varying fastest.
+struct Data {
+    border: bool,
+    triplets: bool,
+    m: usize,
+    n: usize,
+    values: Vec<f64>,
+}
+
+/// Where each coordinate comes from.
+enum Source {
+    Functions,
+    /// z from data, x and y from functions.
+    DataZ(Data),
+    /// x, y and z from data triplets.
+    DataXyz(Data),
+}
+
+/// The scene gensurf prints for `args` (the words after `gensurf`); data files, `-f`
+/// files and `-` (standard input) come through `host`.
+pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
+    let usage = || GenError::Usage(USAGE.to_string());
+    if args.len() < 7 {
+        return Err(usage());
+    }
+    let mut program = CurveProgram::new()?;
+    let (mut objout, mut rev) = (false, false);
+    let mut i = 7;
+    while i < args.len() {
+        match args[i].as_str() {
+            "-s" => {
+                return Err(GenError::Unsupported(
+                    "-s (Phong smoothing) is not reproduced yet".into(),
+                ));
+            }
+            "-o" => objout = true,
+            "-i" => rev = true,
+            option @ ("-e" | "-f") => {
+                i += 1;
+                let value = args.get(i).ok_or_else(usage)?;
+                if option == "-e" {
+                    program.compile(value, value)?;
+                } else {
+                    let text = host.read_file(value)?;
+                    program.compile(&text, value)?;
+                }
+            }
+            _ => return Err(usage()),
+        }
+        i += 1;
+    }
+    let (material, name) = (&args[0], &args[1]);
+    let m = (program.eval(&args[5])? + 0.5) as i64;
+    let n = (program.eval(&args[6])? + 0.5) as i64;
+    if m <= 0 || n <= 0 {
+        return Err(usage());
+    }
+    if (m + 1).saturating_mul(n + 3) > MAX_POINTS {
+        return Err(GenError::Invalid(format!(
+            "{m} by {n}: radc makes at most {MAX_POINTS} points"
+        )));
+    }
+    let (m, n) = (m as usize, n as usize);
+    let z = &args[4];
+    let data_text = if z == "-" {
+        Some(host.read_stdin()?)
+    } else {
+        host.read_file(z).ok()
+    };
+    // `valid(s,t)`, if the user defined it, is evaluated after the curves.
+    let check_valid = program.function_arity("valid") == Some(2);
+    let extra: &[&str] = if check_valid { &["valid"] } else { &[] };
+    let source = match data_text {
+        Some(text) if z == &args[2] && z == &args[3] => {
+            let data = load_data(&text, z, m, n, 3)?;
+            program.define(&["s", "t"], &[], extra)?;
+            Source::DataXyz(data)
+        }
+        Some(text) => {
+            let data = load_data(&text, z, m, n, 1)?;
+            program.define(&["s", "t"], &[("X", &args[2]), ("Y", &args[3])], extra)?;
+            Source::DataZ(data)
+        }
+        None => {
+            let curves = [("X", &args[2][..]), ("Y", &args[3]), ("Z", z)];
+            program.define(&["s", "t"], &curves, extra)?;
+            Source::Functions
+        }
+    };
+    let mut out = command_comment("gensurf", args);
+    program.optimize();
+    let mut surface = Surface {
+        ev: program.evaluator(),
+        source,
+        check_valid,
+        n,
+        rev,
+        objout,
+        material,
+        name,
+        nverts: 0,
+        nout: 0,
+        out: &mut out,
+    };
+    surface.write(m)?;
+    Ok(out)
+}
+
+struct Surface<'a, 'm> {
+    ev: CurveEval<'m>,
+    source: Source,
+    check_valid: bool,
+    n: usize,
+    rev: bool,
+    objout: bool,
+    material: &'a str,
+    name: &'a str,
+    nverts: i64,
+    nout: usize,
+    out: &'a mut String,
+}
+
+impl Surface<'_, '_> {
+    fn write(&mut self, m: usize) -> Result<(), GenError> {
+        let n = self.n;
+        // Rows hold points -1..=n+1 (index + 1), as the C rows do.
+        let mut rows = [
+            vec![Point::default(); n + 3],
+            vec![Point::default(); n + 3],
+            vec![Point::default(); n + 3],
+        ];
+        // The oracle's -ffast-math build turns `x/m` into `x * (1/m)`.
+        let step = 1.0 / m as f64;
+        self.row(-step, &mut rows[0])?;
+        self.row(0.0, &mut rows[1])?;
+        self.row(step, &mut rows[2])?;
+        if self.objout {
+            self.out.push_str(&format!(
+                "\nusemtl {}\n\no {}\n\n",
+                self.material, self.name
+            ));
+            self.obj_row(&mut rows[1]);
+        }
+        for i in 0..m {
+            rows.rotate_left(1);
+            self.row((i + 2) as f64 * step, &mut rows[2])?;
+            if self.objout {
+                self.obj_row(&mut rows[1]);
+            }
+            for j in 0..n {
+                let (r0, r1) = (&rows[0], &rows[1]);
+                let at = |row: &Vec<Point>, k: usize| row[k + 1];
+                let mut orient = j & 1 == 1;
+                if !(at(r0, j).valid != 0 && at(r1, j + 1).valid != 0) {
+                    orient = true;
+                } else if !(at(r1, j).valid != 0 && at(r0, j + 1).valid != 0) {
+                    orient = false;
+                }
+                if orient {
+                    self.square(at(r0, j), at(r1, j), at(r0, j + 1), at(r1, j + 1));
+                } else {
+                    self.square(at(r1, j), at(r1, j + 1), at(r0, j), at(r0, j + 1));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// `comprow()` without smoothing: points 0..=n of the row at `s`, left alone
+    /// outside [0, 1].
+    fn row(&mut self, s: f64, row: &mut [Point]) -> Result<(), GenError> {
+        if !(-FTINY..=1.0 + FTINY).contains(&s) {
+            return Ok(());
+        }
+        let step = 1.0 / self.n as f64;
+        for i in 0..=self.n {
+            let t = i as f64 * step;
+            row[i + 1] = self.point(s, t)?;
+        }
+        Ok(())
+    }
+
+    fn point(&mut self, s: f64, t: f64) -> Result<Point, GenError> {
+        self.ev.set(&[s, t]);
+        let curves = match &self.source {
+            Source::Functions => 3,
+            Source::DataZ(_) => 2,
+            Source::DataXyz(_) => 0,
+        };
+        if self.check_valid && self.ev.curve(curves + 1)? <= 0.0 {
+            return Ok(Point::default());
+        }
+        let p = match &self.source {
+            Source::Functions => [self.ev.curve(1)?, self.ev.curve(2)?, self.ev.curve(3)?],
+            Source::DataZ(d) => {
+                let (x, y) = (self.ev.curve(1)?, self.ev.curve(2)?);
+                [x, y, d.value(s, t, 0)]
+            }
+            Source::DataXyz(d) => [d.value(s, t, 0), d.value(s, t, 1), d.value(s, t, 2)],
+        };
+        Ok(Point {
+            valid: 1,
+            p,
+            uv: [s, t],
+        })
+    }
+
+    /// `putobjrow()` without smoothing: numbers the row's valid vertices.
+    fn obj_row(&mut self, row: &mut [Point]) {
+        for point in row.iter_mut().skip(1).take(self.n + 1) {
+            if point.valid == 0 {
+                continue;
+            }
+            self.out.push_str("v ");
+            self.out.push_str(&vector(&point.p));
+            self.nverts += 1;
+            point.valid = self.nverts;
+            self.out.push_str(&format!(
+                "\tvt {} {}\n",
+                g_body(point.uv[0], 9),
+                g_body(point.uv[1], 9)
+            ));
+        }
+    }
+
+    /// `putobjvert()`: relative vertex and texture indices, no normal.
+    fn obj_vertex(&self, p: &Point) -> String {
+        let pti = if p.valid != 0 {
+            p.valid - self.nverts - 1
+        } else {
+            0
+        };
+        format!(" {pti}/{pti}/0")
+    }
+
+    /// `putsquare()`: one grid cell as a quadrilateral if flat, else two triangles.
+    fn square(&mut self, p0: Point, p1: Point, p2: Point, p3: Point) {
+        let (p1, p2) = if self.rev { (p2, p1) } else { (p1, p2) };
+        let vc1 = unit_normal(&[&p0, &p1, &p2], sub(&p1.p, &p0.p), sub(&p2.p, &p0.p));
+        let vc2 = unit_normal(&[&p1, &p2, &p3], sub(&p2.p, &p3.p), sub(&p1.p, &p3.p));
+        let flat = match (vc1, vc2) {
+            (None, None) => return,
+            (Some(a), Some(b)) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2] >= 1.0 - FTINY * FTINY,
+            _ => false,
+        };
+        let faces: Vec<Vec<&Point>> = if flat {
+            vec![vec![&p0, &p1, &p3, &p2]]
+        } else {
+            [
+                vc1.map(|_| vec![&p0, &p1, &p2]),
+                vc2.map(|_| vec![&p2, &p1, &p3]),
+            ]
+            .into_iter()
+            .flatten()
+            .collect()
+        };
+        for face in faces {
+            if self.objout {
+                self.out.push('f');
+                for p in face {
+                    let v = self.obj_vertex(p);
+                    self.out.push_str(&v);
+                }
+                self.out.push('\n');
+            } else {
+                self.polygon(&face);
+            }
+        }
+    }
+
+    fn polygon(&mut self, points: &[&Point]) {
+        self.nout += 1;
+        self.out.push_str(&format!(
+            "\n{} polygon {}.{}\n0\n0\n{}\n",
+            self.material,
+            self.name,
+            self.nout,
+            3 * points.len()
+        ));
+        for p in points {
+            self.out.push_str(&vector(&p.p));
+        }
+    }
+}
+
+/// The unit normal of a triangle of valid points from two edge vectors; `None` if a
+/// point is invalid or the triangle has no area.
+fn unit_normal(points: &[&Point; 3], a: [f64; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    if points.iter().any(|p| p.valid == 0) {
+        return None;
+    }
+    let mut n = cross(&a, &b);
+    (normalize(&mut n) != 0.0).then_some(n)
+}
+
+/// `"%18.12g %18.12g %18.12g\n"`.
+fn vector(p: &[f64; 3]) -> String {
+    format!(
+        "{} {} {}\n",
+        g(p[0], 18, 12),
+        g(p[1], 18, 12),
+        g(p[2], 18, 12)
+    )
+}
+
+/// `loaddata()`: `(m+1)(n+1)` values per coordinate with the border, or `mn` without.
+fn load_data(text: &str, name: &str, m: usize, n: usize, size: usize) -> Result<Data, GenError> {
+    let bad = || GenError::Invalid(format!("{name}: bad number of data points"));
+    let wanted = (m + 1) * (n + 1) * size;
+    let mut words = Stream::new(text);
+    let mut values = Vec::with_capacity(wanted.min(1 << 20));
+    while values.len() < wanted {
+        let Some(w) = words.word(64) else {
+            break;
+        };
+        if !is_flt(&w) {
+            return Err(GenError::Invalid(format!(
+                "{name}: garbled data value: {w}"
+            )));
+        }
+        values.push(atof(&w));
+    }
+    let mut data = Data {
+        border: true,
+        triplets: size == 3,
+        m: m + 1,
+        n: n + 1,
+        values,
+    };
+    if wanted - data.values.len() == (m + n + 1) * size {
+        data.border = false;
+        data.m = m;
+        data.n = n;
+    } else if data.values.len() != wanted {
+        return Err(bad());
+    }
+    if data.m < 2 || data.n < 2 || words.word(64).is_some() {
+        return Err(bad());
+    }
+    Ok(data)
+}
+
+impl Data {
+    /// `l_dataval()`: coordinate `k` (0 for a single value) at (s, t), bilinear.
+    fn value(&self, s: f64, t: f64, k: usize) -> f64 {
+        let (dm, dn) = (self.m as i64, self.n as i64);
+        let (u, v) = if self.border {
+            (s * (dm - 1) as f64, t * (dn - 1) as f64)
+        } else {
+            (s * dm as f64 - 0.5, t * dn as f64 - 0.5)
+        };
+        let i = (u as i64).clamp(0, (dm - 2).max(0));
+        let j = (v as i64).clamp(0, (dn - 2).max(0));
+        let stride = if self.triplets { 3 } else { 1 };
+        let at = |row: i64, col: i64| {
+            let index = (row * dm + col) as usize * stride + k;
+            self.values.get(index).copied().unwrap_or(0.0)
+        };
+        let (d00, d01, d10, d11) = (at(j, i), at(j, i + 1), at(j + 1, i), at(j + 1, i + 1));
+        let (fi, fj) = (i as f64, j as f64);
+        (fj + 1.0 - v) * ((fi + 1.0 - u) * d00 + (u - fi) * d01)
+            + (v - fj) * ((fi + 1.0 - u) * d10 + (u - fi) * d11)
+    }
+}
