@@ -6,7 +6,8 @@
 //! (s, t) (`-i` reverses it). A `valid(s,t)` function, if defined, drops vertices where
 //! it is not positive. `z` (or all three, when the same name is given for x, y and z)
 //! may name a data file of values on the grid, bilinearly interpolated. `-o` writes
-//! Wavefront `.OBJ` instead. `-s` (Phong smoothing) is not reproduced yet.
+//! Wavefront `.OBJ` instead. `-s` interpolates averaged vertex normals across each
+//! cell with a `surf.cal` Phong texture (or `.OBJ` normals).
 
 use crate::curves::{CurveEval, CurveProgram};
 use crate::mesh::{cross, normalize, sub};
@@ -24,7 +25,11 @@ const MAX_POINTS: i64 = 100_000_000;
 #[derive(Clone, Copy, Default)]
 struct Point {
     valid: i64,
+    /// In `.OBJ` output with `-s`, the normal's number (0 for none).
+    nvalid: i64,
     p: [f64; 3],
+    /// The averaged normal, with `-s`.
+    n: [f64; 3],
     uv: [f64; 2],
 }
 
@@ -54,15 +59,11 @@ pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
         return Err(usage());
     }
     let mut program = CurveProgram::new()?;
-    let (mut objout, mut rev) = (false, false);
+    let (mut objout, mut rev, mut smooth) = (false, false, false);
     let mut i = 7;
     while i < args.len() {
         match args[i].as_str() {
-            "-s" => {
-                return Err(GenError::Unsupported(
-                    "-s (Phong smoothing) is not reproduced yet".into(),
-                ));
-            }
+            "-s" => smooth = true,
             "-o" => objout = true,
             "-i" => rev = true,
             option @ ("-e" | "-f") => {
@@ -126,6 +127,9 @@ pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
         n,
         rev,
         objout,
+        smooth,
+        nnorms: 0,
+        prev_norm: [0.0; 3],
         material,
         name,
         nverts: 0,
@@ -143,6 +147,10 @@ struct Surface<'a, 'm> {
     n: usize,
     rev: bool,
     objout: bool,
+    smooth: bool,
+    /// `.OBJ` normals written so far, and the last one (`prevNorm`).
+    nnorms: i64,
+    prev_norm: [f64; 3],
     material: &'a str,
     name: &'a str,
     nverts: i64,
@@ -164,6 +172,7 @@ impl Surface<'_, '_> {
         self.row(-step, &mut rows[0])?;
         self.row(0.0, &mut rows[1])?;
         self.row(step, &mut rows[2])?;
+        self.normals(&mut rows);
         if self.objout {
             self.out.push_str(&format!(
                 "\nusemtl {}\n\no {}\n\n",
@@ -174,6 +183,7 @@ impl Surface<'_, '_> {
         for i in 0..m {
             rows.rotate_left(1);
             self.row((i + 2) as f64 * step, &mut rows[2])?;
+            self.normals(&mut rows);
             if self.objout {
                 self.obj_row(&mut rows[1]);
             }
@@ -196,18 +206,64 @@ impl Surface<'_, '_> {
         Ok(())
     }
 
-    /// `comprow()` without smoothing: points 0..=n of the row at `s`, left alone
-    /// outside [0, 1].
+    /// `comprow()`: points 0..=n of the row at `s`, left alone outside [0, 1]; with
+    /// smoothing, points -1..=n+1 at any `s`, for the normals at the edges.
     fn row(&mut self, s: f64, row: &mut [Point]) -> Result<(), GenError> {
-        if !(-FTINY..=1.0 + FTINY).contains(&s) {
+        let (first, last) = if self.smooth {
+            (-1, self.n as i64 + 1)
+        } else if !(-FTINY..=1.0 + FTINY).contains(&s) {
             return Ok(());
-        }
+        } else {
+            (0, self.n as i64)
+        };
         let step = 1.0 / self.n as f64;
-        for i in 0..=self.n {
+        for i in first..=last {
             let t = i as f64 * step;
-            row[i + 1] = self.point(s, t)?;
+            row[(i + 1) as usize] = self.point(s, t)?;
         }
         Ok(())
+    }
+
+    /// `compnorms()`: with smoothing, each valid point of the middle row gets the
+    /// normal of the central differences across its neighbours (one-sided where a
+    /// neighbour is invalid).
+    fn normals(&self, rows: &mut [Vec<Point>; 3]) {
+        if !self.smooth {
+            return;
+        }
+        let diff = |a: &[f64; 3], b: &[f64; 3]| sub(a, b);
+        for k in 1..=self.n + 1 {
+            let (r0, r1, r2) = (&rows[0][k], &rows[1][k], &rows[2][k]);
+            if r1.valid == 0 {
+                continue;
+            }
+            let v1 = match (r0.valid != 0, r2.valid != 0) {
+                (false, false) => {
+                    rows[1][k].n = [0.0; 3];
+                    continue;
+                }
+                (false, true) => diff(&r2.p, &r1.p),
+                (true, false) => diff(&r1.p, &r0.p),
+                (true, true) => diff(&r2.p, &r0.p),
+            };
+            let (before, after) = (&rows[1][k - 1], &rows[1][k + 1]);
+            let v2 = match (before.valid != 0, after.valid != 0) {
+                (false, false) => {
+                    rows[1][k].n = [0.0; 3];
+                    continue;
+                }
+                (false, true) => diff(&after.p, &rows[1][k].p),
+                (true, false) => diff(&rows[1][k].p, &before.p),
+                (true, true) => diff(&after.p, &before.p),
+            };
+            let mut n = if self.rev {
+                cross(&v2, &v1)
+            } else {
+                cross(&v1, &v2)
+            };
+            normalize(&mut n);
+            rows[1][k].n = n;
+        }
     }
 
     fn point(&mut self, s: f64, t: f64) -> Result<Point, GenError> {
@@ -232,10 +288,12 @@ impl Surface<'_, '_> {
             valid: 1,
             p,
             uv: [s, t],
+            ..Point::default()
         })
     }
 
-    /// `putobjrow()` without smoothing: numbers the row's valid vertices.
+    /// `putobjrow()`: numbers the row's valid vertices, writing each normal that
+    /// differs from the previous one (with `-s`).
     fn obj_row(&mut self, row: &mut [Point]) {
         for point in row.iter_mut().skip(1).take(self.n + 1) {
             if point.valid == 0 {
@@ -250,17 +308,39 @@ impl Surface<'_, '_> {
                 g_body(point.uv[0], 9),
                 g_body(point.uv[1], 9)
             ));
+            let n = point.n;
+            let zero = n[0] * n[0] + n[1] * n[1] + n[2] * n[2] <= FTINY * FTINY;
+            if !self.smooth || zero {
+                point.nvalid = 0;
+            } else if (0..3).all(|k| (n[k] - self.prev_norm[k]).abs() <= FTINY) {
+                point.nvalid = self.nnorms;
+            } else {
+                self.out.push_str(&format!(
+                    "\tvn {} {} {}\n",
+                    g_body(n[0], 9),
+                    g_body(n[1], 9),
+                    g_body(n[2], 9)
+                ));
+                self.nnorms += 1;
+                point.nvalid = self.nnorms;
+                self.prev_norm = n;
+            }
         }
     }
 
-    /// `putobjvert()`: relative vertex and texture indices, no normal.
+    /// `putobjvert()`: relative vertex, texture and normal indices.
     fn obj_vertex(&self, p: &Point) -> String {
         let pti = if p.valid != 0 {
             p.valid - self.nverts - 1
         } else {
             0
         };
-        format!(" {pti}/{pti}/0")
+        let ni = if p.nvalid != 0 {
+            p.nvalid - self.nnorms - 1
+        } else {
+            0
+        };
+        format!(" {pti}/{pti}/{ni}")
     }
 
     /// `putsquare()`: one grid cell as a quadrilateral if flat, else two triangles.
@@ -273,36 +353,63 @@ impl Surface<'_, '_> {
             (Some(a), Some(b)) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2] >= 1.0 - FTINY * FTINY,
             _ => false,
         };
-        let faces: Vec<Vec<&Point>> = if flat {
-            vec![vec![&p0, &p1, &p3, &p2]]
-        } else {
-            [
-                vc1.map(|_| vec![&p0, &p1, &p2]),
-                vc2.map(|_| vec![&p2, &p1, &p3]),
+        // Each face with the exact normals that correct its texture's constant term.
+        let faces: Vec<(Vec<&Point>, Vec<([f64; 3], f64)>)> = match (flat, vc1, vc2) {
+            (true, Some(a), Some(b)) => {
+                vec![(vec![&p0, &p1, &p3, &p2], vec![(a, -0.5), (b, -0.5)])]
+            }
+            (_, a, b) => [
+                a.map(|a| (vec![&p0, &p1, &p2], vec![(a, -1.0)])),
+                b.map(|b| (vec![&p2, &p1, &p3], vec![(b, -1.0)])),
             ]
             .into_iter()
             .flatten()
-            .collect()
+            .collect(),
         };
-        for face in faces {
-            if self.objout {
+        if self.objout {
+            for (face, _) in faces {
                 self.out.push('f');
                 for p in face {
                     let v = self.obj_vertex(p);
                     self.out.push_str(&v);
                 }
                 self.out.push('\n');
-            } else {
-                self.polygon(&face);
             }
+            return;
+        }
+        let interp = if self.smooth {
+            norm_interp(&p0, &p1, &p2, &p3)
+        } else {
+            None
+        };
+        // The texture's constant term, corrected by the exact normal of each face.
+        let corrected = |norm3: [f64; 3], terms: &[([f64; 3], f64)]| {
+            terms
+                .iter()
+                .fold(norm3, |v, (n, f)| std::array::from_fn(|k| v[k] + f * n[k]))
+        };
+        for (face, exact) in faces {
+            self.out.push_str(&format!("\n{} ", self.material));
+            if let Some((axis, norm)) = &interp {
+                let last = corrected(norm[3], &exact);
+                self.out.push_str(&format!(
+                    "texfunc Phong\n4 surf_dx surf_dy surf_dz surf.cal\n0\n13\t{axis}\n"
+                ));
+                for row in &norm[..3] {
+                    self.out.push_str(&vector(row));
+                }
+                self.out.push_str(&vector(&last));
+                self.out.push_str("\nPhong ");
+            }
+            self.polygon_body(&face);
         }
     }
 
-    fn polygon(&mut self, points: &[&Point]) {
+    /// `polygon <name>.<n>` and its vertices, after the modifier already written.
+    fn polygon_body(&mut self, points: &[&Point]) {
         self.nout += 1;
         self.out.push_str(&format!(
-            "\n{} polygon {}.{}\n0\n0\n{}\n",
-            self.material,
+            "polygon {}.{}\n0\n0\n{}\n",
             self.name,
             self.nout,
             3 * points.len()
@@ -311,6 +418,74 @@ impl Surface<'_, '_> {
             self.out.push_str(&vector(&p.p));
         }
     }
+}
+
+/// `norminterp()`: the bilinear map (in the two coordinates off the dominant axis of
+/// the averaged normals) that interpolates the four corner normals, as the texture
+/// coefficients; `None` when the corners do not determine one.
+fn norm_interp(p0: &Point, p1: &Point, p2: &Point, p3: &Point) -> Option<(usize, [[f64; 3]; 4])> {
+    let corners = [p0, p1, p2, p3];
+    let mut v1 = p0.n;
+    for p in &corners[1..] {
+        v1 = std::array::from_fn(|k| v1[k] + p.n[k]);
+    }
+    let mut ax = if v1[0].abs() > v1[1].abs() { 0 } else { 1 };
+    if v1[ax].abs() <= v1[2].abs() {
+        ax = 2;
+    }
+    let (u, v) = ((ax + 1) % 3, (ax + 2) % 3);
+    let mut eqn = [[0.0; 4]; 4];
+    for (row, p) in eqn.iter_mut().zip(&corners) {
+        *row = [p.p[u] * p.p[v], p.p[u], p.p[v], 1.0];
+    }
+    let inv = invert(&eqn)?;
+    let mut res = [[0.0; 3]; 4];
+    for (j, out) in res.iter_mut().enumerate() {
+        for (i, o) in out.iter_mut().enumerate() {
+            // The oracle's -ffast-math build adds the four products in pairs.
+            *o = (inv[j][0] * p0.n[i] + inv[j][1] * p1.n[i])
+                + (inv[j][2] * p2.n[i] + inv[j][3] * p3.n[i]);
+        }
+    }
+    Some((ax, res))
+}
+
+/// `invmat4()`: Gauss-Jordan elimination with partial pivoting, pivots below 1e-6
+/// meaning no inverse. Rows are scaled by the pivot's reciprocal, as the oracle's
+/// -ffast-math build computes the C code's division.
+fn invert(m: &[[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
+    let mut a = *m;
+    let mut inv = radc_lang::transform::IDENTITY;
+    for i in 0..4 {
+        let mut best = FTINY;
+        let mut pivot = None;
+        for (k, row) in a.iter().enumerate().skip(i) {
+            if row[i].abs() > best {
+                best = row[i].abs();
+                pivot = Some(k);
+            }
+        }
+        let j = pivot?;
+        if j != i {
+            a.swap(i, j);
+            inv.swap(i, j);
+        }
+        let r = 1.0 / a[i][i];
+        for k in 0..4 {
+            a[i][k] *= r;
+            inv[i][k] *= r;
+        }
+        for j in 0..4 {
+            if j != i {
+                let t = a[j][i];
+                for k in 0..4 {
+                    a[j][k] -= a[i][k] * t;
+                    inv[j][k] -= inv[i][k] * t;
+                }
+            }
+        }
+    }
+    Some(inv)
 }
 
 /// The unit normal of a triangle of valid points from two edge vectors; `None` if a

@@ -1,6 +1,6 @@
 //! Radiance's scene generators, reimplemented to print exactly what the C programs
-//! print: `genbox`, `genprism`, `genrev`, `gensky`, `gensurf` (not `-s` yet),
-//! `genworm` and `xform` (`src/gen/*.c` in Radiance). The curves of genrev, gensurf
+//! print: `genbox`, `genprism`, `genrev`, `gensky`, `gensurf`, `genworm` and
+//! `xform` (`src/gen/*.c` in Radiance). The curves of genrev, gensurf
 //! and genworm are calcomp, evaluated by `radc_lang::cal`; deep calcomp recursion
 //! needs a deep stack, so callers run those on a thread with one (as `radc genworm`
 //! and `radc calc` do).

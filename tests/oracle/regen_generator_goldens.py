@@ -111,7 +111,7 @@ CASES = [
     ("genrev-degenerate", "genrev", "m v 1 1 3 -s", None),
     ("genrev-err-nseg", "genrev", "m v t t*t 0", None),
     ("genrev-err-option", "genrev", "m v t t 3 -q", None),
-    # gensurf: function surfaces (flat cells as quads), valid(), -i, -o, data files
+    # gensurf: function surfaces (flat cells as quads), valid(), -i, -o, -s, data files
     ("gensurf-plane", "gensurf", "m s s t 0 2 3", None),
     ("gensurf-saddle", "gensurf", "m s s t s*t 3 2", None),
     ("gensurf-cylinder", "gensurf", "m s cos(PI*s) sin(PI*s) t 4 3", None),
@@ -126,6 +126,12 @@ CASES = [
     ("gensurf-heights-noborder", "gensurf", "m h s t heights.dat 3 3", None),
     ("gensurf-points", "gensurf", "m p points.dat points.dat points.dat 2 2", None),
     ("gensurf-heights-stdin", "gensurf", "m h s t - 2 2", "heights.dat"),
+    ("gensurf-saddle-smooth", "gensurf", "m s s t s*t 3 2 -s", None),
+    ("gensurf-bowl-smooth-inverted", "gensurf", "m s s t s*s+t*t 3 3 -i -s", None),
+    ("gensurf-bowl-smooth-obj", "gensurf", "m s s t s*s+t*t 3 3 -o -s", None),
+    ("gensurf-valid-smooth", "gensurf", "m s s t s*t 2 2 -s -e valid(s,t)=.8-s*t", None),
+    ("gensurf-valid-smooth-obj", "gensurf", "m s s t s*t 3 3 -o -s -e valid(s,t)=.8-s*t", None),
+    ("gensurf-heights-smooth", "gensurf", "m h s t heights.dat 2 2 -s", None),
     ("gensurf-err-count", "gensurf", "m s s t 0 0 3", None),
     ("gensurf-err-data", "gensurf", "m h s t heights.dat 4 6", None),
     # xform: every transform option, names, modifiers, arrays, commands, mirroring
@@ -226,7 +232,7 @@ def random_invocation(rng):
             x = rng.choice(terms)
             return ("%.3g*" % rng.uniform(-3, 3)) + (x % rng.randint(1, 4) if "%d" in x else x)
         args = ["m", "s", term(), term(), term(), str(rng.randint(1, 6)), str(rng.randint(1, 6))]
-        args += [o for o in ("-i", "-o") if rng.random() < 0.3]
+        args += [o for o in ("-i", "-o", "-s") if rng.random() < 0.3]
         if rng.random() < 0.2:
             args += ["-e", "valid(s,t)=%.3g-s*t" % rng.uniform(0.2, 1)]
     elif program in ("genworm", "genrev"):
