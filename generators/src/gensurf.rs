@@ -354,7 +354,7 @@ impl Surface<'_, '_> {
             _ => false,
         };
         // Each face with the exact normals that correct its texture's constant term.
-        let faces: Vec<(Vec<&Point>, Vec<([f64; 3], f64)>)> = match (flat, vc1, vc2) {
+        let faces: Vec<Face> = match (flat, vc1, vc2) {
             (true, Some(a), Some(b)) => {
                 vec![(vec![&p0, &p1, &p3, &p2], vec![(a, -0.5), (b, -0.5)])]
             }
@@ -487,6 +487,10 @@ fn invert(m: &[[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
     }
     Some(inv)
 }
+
+/// One face of a cell, with the exact normals (and their weights) that correct its
+/// texture's constant term.
+type Face<'p> = (Vec<&'p Point>, Vec<([f64; 3], f64)>);
 
 /// The unit normal of a triangle of valid points from two edge vectors; `None` if a
 /// point is invalid or the triangle has no area.
