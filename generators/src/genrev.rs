@@ -14,7 +14,7 @@ const USAGE: &str = "genrev material name z(t) r(t) nseg [-e expr] [-f file] [-s
 /// genrev's own tolerance for a coordinate not changing.
 const FTINY: f64 = 1e-9;
 /// More segments than this are refused rather than filling memory.
-const MAX_SEGMENTS: i64 = 10_000_000;
+const MAX_SEGMENTS: i64 = 1_000_000;
 
 /// Which way a segment moves: along z and in radius.
 #[derive(Clone, Copy, PartialEq)]

@@ -17,8 +17,9 @@ use crate::{GenError, Host, command_comment};
 
 const USAGE: &str = "gensurf material name x(s,t) y(s,t) z(s,t) m n [-s][-o][-e expr][-f file]";
 const FTINY: f64 = 1e-6;
-/// More grid points than this are refused rather than filling memory.
-const MAX_POINTS: i64 = 100_000_000;
+/// Bigger grids than this are refused rather than filling memory.
+const MAX_CELLS: i64 = 10_000_000;
+const MAX_ROW: i64 = 1_000_000;
 
 /// A grid point (`POINT`): whether it is valid (in `.OBJ` output, its vertex number),
 /// its position and its (s, t).
@@ -86,9 +87,9 @@ pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
     if m <= 0 || n <= 0 {
         return Err(usage());
     }
-    if (m + 1).saturating_mul(n + 3) > MAX_POINTS {
+    if m.saturating_mul(n) > MAX_CELLS || n > MAX_ROW {
         return Err(GenError::Invalid(format!(
-            "{m} by {n}: radc makes at most {MAX_POINTS} points"
+            "{m} by {n}: radc makes at most {MAX_CELLS} cells, {MAX_ROW} to a row"
         )));
     }
     let (m, n) = (m as usize, n as usize);

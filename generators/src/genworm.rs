@@ -94,7 +94,7 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
 }
 
 /// More segments than this are refused rather than filling memory.
-const MAX_SEGMENTS: i64 = 10_000_000;
+const MAX_SEGMENTS: i64 = 1_000_000;
 
 fn line(out: &mut String, p: &[f64; 3]) {
     out.push_str(&format!(
