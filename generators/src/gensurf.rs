@@ -220,7 +220,16 @@ impl Surface<'_, '_> {
         let step = 1.0 / self.n as f64;
         for i in first..=last {
             let t = i as f64 * step;
-            row[(i + 1) as usize] = self.point(s, t)?;
+            let slot = &mut row[(i + 1) as usize];
+            let point = self.point(s, t)?;
+            // An invalid point keeps the normal its slot held before: gensurf reuses
+            // row buffers and only overwrites a normal when the point is valid, and
+            // the cell's normal interpolation reads all four corners.
+            let stale = slot.n;
+            *slot = point;
+            if point.valid == 0 {
+                slot.n = stale;
+            }
         }
         Ok(())
     }

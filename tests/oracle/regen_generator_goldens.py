@@ -131,6 +131,8 @@ CASES = [
     ("gensurf-bowl-smooth-obj", "gensurf", "m s s t s*s+t*t 3 3 -o -s", None),
     ("gensurf-valid-smooth", "gensurf", "m s s t s*t 2 2 -s -e valid(s,t)=.8-s*t", None),
     ("gensurf-valid-smooth-obj", "gensurf", "m s s t s*t 3 3 -o -s -e valid(s,t)=.8-s*t", None),
+    ("gensurf-valid-smooth-stale-normals", "gensurf",
+     "m s s t s*t 4 2 -s -e valid(s,t)=.832-s*t", None),
     ("gensurf-heights-smooth", "gensurf", "m h s t heights.dat 2 2 -s", None),
     ("gensurf-err-count", "gensurf", "m s s t 0 0 3", None),
     ("gensurf-err-data", "gensurf", "m h s t heights.dat 4 6", None),
