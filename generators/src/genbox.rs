@@ -16,6 +16,10 @@ use crate::{GenError, command_comment};
 const USAGE: &str =
     "genbox material name xsize ysize zsize [-i] [-b bevel | -r round [-n nsegs][-s]] [-o]";
 
+/// Most subdivision levels for rounded corners (`-n 256`: 65536 triangles each, about
+/// 50 MB of output in all).
+const MAX_LEVELS: u32 = 8;
+
 /// The characters naming vertex codes 0..63 in face names.
 const LETTERS: &[u8] = b"0123456789._ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz";
 
@@ -89,6 +93,15 @@ pub fn genbox(args: &[String]) -> Result<String, GenError> {
         } {
             levels += 1;
         }
+    }
+    // Each level quadruples the triangles of every rounded corner; past this the
+    // output runs to gigabytes, so refuse rather than exhaust memory.
+    if levels > MAX_LEVELS {
+        return Err(GenError::Invalid(format!(
+            "-n {nsegs} needs {} triangles per corner; radc allows -n up to {}",
+            4_u64.saturating_pow(levels),
+            1_u32 << MAX_LEVELS
+        )));
     }
     let mut out = command_comment("genbox", args);
     let mut w = Writer {

@@ -1,5 +1,13 @@
 //! Radiance's scene generators, reimplemented to print exactly what the C programs
-//! print: `genbox`, `genprism` and `xform` (`src/gen/*.c` in Radiance).
+//! print: `genbox`, `genprism`, `genrev`, `gensky`, `gensurf`, `genworm` and
+//! `xform` (`src/gen/*.c` in Radiance). The curves of genrev, gensurf
+//! and genworm are calcomp, evaluated by `radc_lang::cal`; deep calcomp recursion
+//! needs a deep stack, so callers run those on a thread with one (as `radc genworm`
+//! and `radc calc` do).
+//!
+//! "Exactly" is checked against the oracle build (pyradiance), which compiles Radiance
+//! with `-ffast-math`: where that changes a sum's order enough to show in the printed
+//! digits (`normalize()`, `multmat4()`), the code follows the compiled order and says so.
 //!
 //! Each generator is a pure function from its command-line arguments (without the
 //! program name) to the scene text it would write on standard output. Anything from
@@ -7,8 +15,14 @@
 //! scene read by xform) comes through a [`Host`], so the library never does IO itself:
 //! the CLI supplies a host over the file system, tests supply one over strings.
 
+pub mod command;
+mod curves;
 pub mod genbox;
 pub mod genprism;
+pub mod genrev;
+pub mod gensky;
+pub mod gensurf;
+pub mod genworm;
 mod mesh;
 pub mod printf;
 mod wavefront;
@@ -17,6 +31,10 @@ pub mod xform;
 
 pub use genbox::genbox;
 pub use genprism::genprism;
+pub use genrev::genrev;
+pub use gensky::gensky;
+pub use gensurf::gensurf;
+pub use genworm::genworm;
 pub use xform::xform;
 
 use std::fmt;

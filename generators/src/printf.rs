@@ -26,18 +26,35 @@ pub fn g_body(value: f64, precision: usize) -> String {
         return if value < 0.0 { "-inf" } else { "inf" }.to_string();
     }
     let p = precision.max(1);
-    // The exponent after rounding to p significant digits decides the style.
+    // Round once, to p significant digits; the exponent after rounding decides the
+    // style, and `%f` with p-1-x decimals would round at the very same digit, so the
+    // fixed form is built from these digits.
     let sci = format!("{:.*e}", p - 1, value);
     let (mantissa, exp) = sci.split_once('e').unwrap_or((sci.as_str(), "0"));
     let x: i64 = exp.parse().unwrap_or(0);
     if x < -4 || x >= p as i64 {
         let mantissa = strip_zeros(mantissa);
         let sign = if x < 0 { '-' } else { '+' };
-        format!("{mantissa}e{sign}{:02}", x.unsigned_abs())
-    } else {
-        let decimals = (p as i64 - 1 - x).max(0) as usize;
-        strip_zeros(&format!("{value:.decimals$}")).to_string()
+        return format!("{mantissa}e{sign}{:02}", x.unsigned_abs());
     }
+    let (sign, unsigned) = match mantissa.strip_prefix('-') {
+        Some(rest) => ("-", rest),
+        None => ("", mantissa),
+    };
+    let digits: String = unsigned.chars().filter(char::is_ascii_digit).collect();
+    let mut out = String::with_capacity(digits.len() + 8);
+    out.push_str(sign);
+    if x >= 0 {
+        let (int, frac) = digits.split_at((x as usize + 1).min(digits.len()));
+        out.push_str(int);
+        out.push('.');
+        out.push_str(frac);
+    } else {
+        out.push_str("0.");
+        out.extend(std::iter::repeat_n('0', (-x - 1) as usize));
+        out.push_str(&digits);
+    }
+    strip_zeros(&out).to_string()
 }
 
 /// `%.Pe`: mantissa with P decimals, exponent signed with at least two digits.
@@ -94,5 +111,48 @@ mod tests {
         assert_eq!(e(-0.0, 6), "-0.000000e+00");
         assert_eq!(e(123456.789, 6), "1.234568e+05");
         assert_eq!(e(1.5e-300, 2), "1.50e-300");
+    }
+
+    /// The digit-reusing fixed form agrees with formatting twice, as C does.
+    #[test]
+    fn fixed_form_matches_two_pass_formatting() {
+        let two_pass = |v: f64, p: usize| {
+            let sci = format!("{:.*e}", p - 1, v);
+            let x: i64 = sci
+                .split_once('e')
+                .map_or(0, |(_, e)| e.parse().unwrap_or(0));
+            if x < -4 || x >= p as i64 {
+                return None;
+            }
+            let d = (p as i64 - 1 - x).max(0) as usize;
+            Some(strip_zeros(&format!("{v:.d$}")).to_string())
+        };
+        let mut state: u64 = 0x1234_5678_9abc_def0;
+        for _ in 0..20000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let mantissa = (state >> 11) as f64 / (1u64 << 53) as f64;
+            let exponent = ((state % 23) as i32) - 8;
+            let sign = if state & 1 == 1 { -1.0 } else { 1.0 };
+            let v = sign * mantissa * 10f64.powi(exponent);
+            for p in [1, 3, 6, 12] {
+                if let Some(want) = two_pass(v, p) {
+                    assert_eq!(g_body(v, p), want, "{v:e} at {p}");
+                }
+            }
+        }
+        for v in [
+            0.5,
+            9.5,
+            99.5,
+            0.00015,
+            999999.5,
+            0.0001,
+            123456789012.0,
+            -0.0,
+        ] {
+            assert_eq!(g_body(v, 12), two_pass(v, 12).unwrap_or_default(), "{v}");
+        }
     }
 }

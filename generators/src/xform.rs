@@ -37,6 +37,7 @@ pub fn xform(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
     let mut run = Run {
         host,
         stdin: None,
+        stdin_taken: false,
         depth: 0,
     };
     let mut out = String::new();
@@ -48,6 +49,8 @@ struct Run<'h> {
     host: &'h mut dyn Host,
     /// Standard input, kept because `-a` transforms it once per copy.
     stdin: Option<String>,
+    /// Standard input was read as an argument file (`-f -`), so not as a scene.
+    stdin_taken: bool,
     depth: usize,
 }
 
@@ -69,10 +72,8 @@ struct Settings<'a> {
 impl Run<'_> {
     /// xform's `main()`: `-f` and `-a` rewrite the arguments and call it again.
     fn main(&mut self, args: &[String], out: &mut String) -> Result<(), GenError> {
-        if args.iter().any(|a| a == "-f") {
-            return Err(GenError::Unsupported(
-                "xform: -f (argument file) is not reproduced yet".into(),
-            ));
+        if let Some(fi) = args.iter().position(|a| a == "-f") {
+            return self.argument_file(args, fi, out);
         }
         if let Some(ai) = args.iter().position(|a| a == "-a") {
             return self.array(args, ai, out);
@@ -112,7 +113,7 @@ impl Run<'_> {
         s.xfa = a;
         let words = spanned(&args[a..], offset_of(args, a));
         let (tot, used) =
-            Transform::parse_prefix(&words).map_err(|d| GenError::Transform(Box::new(d)))?;
+            Transform::parse_prefix(&words).map_err(|d| late_option_hint(d, &words))?;
         let xac = a + used;
         s.xav = &args[..xac];
         s.tot = tot;
@@ -125,6 +126,9 @@ impl Run<'_> {
         }
         out.push('\n');
         if xac == args.len() {
+            if self.stdin_taken {
+                return Err(GenError::Usage("cannot use stdin more than once".into()));
+            }
             let text = match &self.stdin {
                 Some(t) => t.clone(),
                 None => {
@@ -142,6 +146,71 @@ impl Run<'_> {
             }
             Ok(())
         }
+    }
+
+    /// `-f file`: one transform per line of the file (or `-` for standard input), the
+    /// k-th named `i<k>` (or `<name>.<k>` after `-n name`); blank and `#` lines are
+    /// copied to the output.
+    fn argument_file(
+        &mut self,
+        args: &[String],
+        fi: usize,
+        out: &mut String,
+    ) -> Result<(), GenError> {
+        let missing = || GenError::Usage("missing file for -f option".into());
+        let name = args.get(fi + 1).ok_or_else(missing)?;
+        if name.len() > 1 && name.starts_with('-') {
+            return Err(missing());
+        }
+        let text = if name == "-" {
+            if self.stdin_taken {
+                return Err(GenError::Usage("cannot use stdin more than once".into()));
+            }
+            self.stdin_taken = true;
+            self.host.read_stdin()?
+        } else {
+            let text = self.host.read_file(name)?;
+            let mut lines = Stream::new(&text);
+            let mut n = 0;
+            while let Some(line) = lines.line(COMMAND_LINE) {
+                n += usize::from(!line.is_empty() && !line.starts_with('#'));
+            }
+            if n == 0 {
+                return Err(GenError::Invalid(format!("empty argument file \"{name}\"")));
+            }
+            text
+        };
+        if self.depth >= MAX_DEPTH {
+            return Err(GenError::Invalid("argument files nested too deep".into()));
+        }
+        self.depth += 1;
+        let mut lines = Stream::new(&text);
+        let mut k = 0;
+        let mut result = Ok(());
+        while let Some(line) = lines.line(COMMAND_LINE) {
+            if line.is_empty() || line.starts_with('#') {
+                out.push_str(&line);
+                out.push('\n');
+                continue;
+            }
+            let mut argv: Vec<String> = args[..fi].to_vec();
+            argv.extend(argument_line_words(&line));
+            argv.extend(args[fi + 2..].iter().cloned());
+            match (1..argv.len()).find(|&i| argv[i - 1] == "-n") {
+                Some(i) => argv[i] = format!("{}.{k}", argv[i]),
+                None => {
+                    argv.insert(0, format!("i{k}"));
+                    argv.insert(0, "-n".into());
+                }
+            }
+            result = self.main(&argv, out);
+            if result.is_err() {
+                break;
+            }
+            k += 1;
+        }
+        self.depth -= 1;
+        result
     }
 
     /// `-a N`: N copies, the k-th with `-i k` in place of `-a N` and its names
@@ -245,34 +314,84 @@ impl Run<'_> {
 
     /// The output of one `!` command: a built-in generator if it is one, else the host's.
     fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
-        let Some(words) = simple_words(command) else {
-            return self.host.run_command(command, dir);
+        let builtin = {
+            let mut host = InDir {
+                host: &mut *self.host,
+                dir,
+            };
+            crate::command::run_builtin_at(command, &mut host, self.depth)
         };
-        let Some(program) = words.first() else {
-            return Ok(String::new());
-        };
-        let program = program.rsplit('/').next().unwrap_or(program);
-        let rest = &words[1..];
-        let mut host = InDir {
-            host: &mut *self.host,
-            dir,
-        };
-        match program {
-            "genbox" => crate::genbox(rest),
-            "genprism" => crate::genprism(rest, &mut host),
-            "xform" => {
-                let mut nested = Run {
-                    host: &mut host,
-                    stdin: None,
-                    depth: self.depth,
-                };
-                let mut out = String::new();
-                nested.main(rest, &mut out)?;
-                Ok(out)
-            }
-            _ => self.host.run_command(command, dir),
+        match builtin {
+            Some(result) => result,
+            None => self.host.run_command(command, dir),
         }
     }
+}
+
+/// xform run from a `!` command inside a scene, `depth` commands deep.
+pub(crate) fn nested(
+    args: &[String],
+    host: &mut dyn Host,
+    depth: usize,
+) -> Result<String, GenError> {
+    let mut run = Run {
+        host,
+        stdin: None,
+        stdin_taken: false,
+        depth,
+    };
+    let mut out = String::new();
+    run.main(args, &mut out)?;
+    Ok(out)
+}
+
+/// The words of one argument-file line as xform splits them: an optional leading `!`
+/// and `xform ` are skipped; a quote opens a quoted word, and (as in Radiance) every
+/// later word is then read up to the next such quote rather than the next space; a
+/// backslash before a newline joins lines.
+fn argument_line_words(line: &str) -> Vec<String> {
+    let b = line.as_bytes();
+    let mut cp = usize::from(b.first() == Some(&b'!'));
+    if b[cp..].starts_with(b"xform ") {
+        cp += 6;
+    }
+    let mut words = Vec::new();
+    let mut quote: Option<u8> = None;
+    loop {
+        while b.get(cp).is_some_and(|&c| crate::words::is_c_space(c)) {
+            cp += 1;
+        }
+        if let Some(&q @ (b'"' | b'\'')) = b.get(cp) {
+            quote = Some(q);
+            cp += 1;
+        }
+        if cp >= b.len() {
+            break;
+        }
+        if b[cp] == b'\\' && cp + 1 < b.len() {
+            cp += 1;
+            if b[cp] == b'\n' {
+                continue;
+            }
+        }
+        let start = cp;
+        let end = match quote {
+            Some(q) => {
+                let close = b[cp + 1..].iter().position(|&c| c == q).map(|i| cp + 1 + i);
+                cp = close.map_or(b.len(), |i| i + 1);
+                close.unwrap_or(b.len())
+            }
+            None => {
+                cp += 1;
+                while cp < b.len() && !crate::words::is_c_space(b[cp]) {
+                    cp += 1;
+                }
+                cp
+            }
+        };
+        words.push(String::from_utf8_lossy(&b[start..end]).into_owned());
+    }
+    words
 }
 
 /// A host seen from a folder: relative file names are taken from that folder, as xform
@@ -316,39 +435,17 @@ fn parent_dir(name: &str) -> &str {
     }
 }
 
-/// Splits a command into words if it is a plain command line (quotes allowed, no
-/// pipes, redirections, substitutions or variables): only those can be built-ins.
-fn simple_words(command: &str) -> Option<Vec<String>> {
-    let mut words = Vec::new();
-    let mut word: Option<String> = None;
-    let mut quote = None;
-    let mut chars = command.chars();
-    while let Some(c) = chars.next() {
-        match (quote, c) {
-            (Some(q), c) if c == q => quote = None,
-            (Some(_), c) => word.get_or_insert_with(String::new).push(c),
-            (None, '"' | '\'') => {
-                quote = Some(c);
-                word.get_or_insert_with(String::new);
-            }
-            (None, '\\') => {
-                let next = chars.next()?;
-                if next != '\n' {
-                    word.get_or_insert_with(String::new).push(next);
-                }
-            }
-            (None, c) if c.is_whitespace() => words.extend(word.take()),
-            (None, '|' | '&' | ';' | '<' | '>' | '`' | '$' | '(' | ')' | '*' | '?' | '[') => {
-                return None;
-            }
-            (None, c) => word.get_or_insert_with(String::new).push(c),
-        }
-    }
-    if quote.is_some() {
-        return None;
-    }
-    words.extend(word);
-    Some(words)
+/// xform's own options after the transform stop it there; say where they belong.
+fn late_option_hint(d: radc_lang::Diagnostic, words: &[(&str, Span)]) -> GenError {
+    let word = words.iter().find(|(_, span)| *span == d.span).map(|w| w.0);
+    let late = matches!(word, Some("-n" | "-m" | "-c" | "-e" | "-I"));
+    GenError::Transform(Box::new(
+        if late && d.code == radc_lang::diagnostic::E0801 {
+            d.with_hint("xform's -n, -m, -c, -e and -I go before the transform options")
+        } else {
+            d
+        },
+    ))
 }
 
 /// Byte offset of word `k` in the arguments joined by single spaces.

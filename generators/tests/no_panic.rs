@@ -2,7 +2,7 @@
 //! failure is a `GenError`. A small deterministic fuzzer over words that exercise each
 //! option and its edge cases.
 
-use radc_generators::{GenError, Host, genbox, genprism, xform};
+use radc_generators::{GenError, Host, genbox, genprism, genrev, gensky, gensurf, genworm, xform};
 
 /// xorshift64*: reproducible without a dependency.
 struct Rng(u64);
@@ -114,6 +114,7 @@ impl Host for Files {
         match path {
             "s.rad" | "sub/s.rad" => Ok("!xform s.rad\nvoid sphere s 0 0 4 1 2 3 1\n".into()),
             "v.txt" => Ok("0 0 1 0 0 1".into()),
+            "args.txt" => Ok("# c\n-t 1 0 0\n!xform \"a b\" -f args.txt\n\\\n-a 2 -rz 5\n!".into()),
             _ => Err(GenError::Host(format!("no {path}"))),
         }
     }
@@ -132,6 +133,29 @@ fn random_arguments_never_panic() {
         let _ = genbox(&args);
         let _ = genprism(&args, &mut Files);
         let _ = xform(&args, &mut Files);
+        let _ = gensky(&args);
+        if rng.next().is_multiple_of(16) {
+            // calcomp setup is the slow part; a sample is enough.
+            let _ = genworm(&args, &mut Files);
+            let _ = genrev(&args, &mut Files);
+            let mut rev: Vec<String> = ["m", "v", "t", "1+t*t", "5"].map(String::from).to_vec();
+            rev.extend(args.iter().cloned());
+            let _ = genrev(&rev, &mut Files);
+            let _ = gensurf(&args, &mut Files);
+            let mut surf: Vec<String> = ["m", "s", "s", "t", "v.txt", "2", "1"]
+                .map(String::from)
+                .to_vec();
+            surf.extend(args.iter().cloned());
+            let _ = gensurf(&surf, &mut Files);
+            let mut worm: Vec<String> = ["m", "w", "t", "t*t", "sin(t)", ".1", "4"]
+                .map(String::from)
+                .to_vec();
+            worm.extend(args.iter().cloned());
+            let _ = genworm(&worm, &mut Files);
+        }
+        let mut dated = vec!["3".to_string(), "21".into(), "12".into()];
+        dated.extend(args.iter().cloned());
+        let _ = gensky(&dated);
         // Also with a valid start, so the option parsers are reached.
         let mut boxed = vec![
             "m".to_string(),

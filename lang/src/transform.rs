@@ -99,7 +99,10 @@ impl Transform {
                             args[0].1,
                             "a scale factor of 0 collapses everything to a point",
                         )
-                        .with_label(span, "in this -s option"));
+                        .with_label(span, "in this -s option")
+                        .with_hint(
+                            "give a non-zero factor (a negative one also mirrors), or drop the -s",
+                        ));
                     }
                     let mut m = IDENTITY;
                     for (k, row) in m.iter_mut().take(3).enumerate() {
@@ -209,9 +212,14 @@ impl Op {
                 format!("'{word}' is not a transform option"),
             );
             let known = ["-t", "-rx", "-ry", "-rz", "-s", "-mx", "-my", "-mz", "-i"];
-            d = match diagnostic::suggest(word, known) {
-                Some(s) => d.with_hint(format!("did you mean '{s}'?")),
-                None => d.with_hint(OPTIONS_HINT),
+            d = if word.starts_with("-r") {
+                d.with_hint("rotations are -rx, -ry and -rz, each followed by degrees")
+            } else if word.starts_with("-m") {
+                d.with_hint("mirrors are -mx, -my and -mz")
+            } else if let Some(s) = diagnostic::suggest(word, known) {
+                d.with_hint(format!("did you mean '{s}'?"))
+            } else {
+                d.with_hint(OPTIONS_HINT)
             };
             d
         })
@@ -237,10 +245,15 @@ impl Op {
         let rest = &words[at + 1..];
         if rest.len() < kinds.len() {
             let what = describe(kinds);
+            let follow = match rest.len() {
+                0 => "nothing follows it".to_string(),
+                1 => "only 1 word follows it".to_string(),
+                n => format!("only {n} words follow it"),
+            };
             return Err(Diagnostic::new(
                 diagnostic::E0802,
                 span,
-                format!("'{word}' needs {what}, but the words end"),
+                format!("'{word}' needs {what}, but {follow}"),
             ));
         }
         let args = &rest[..kinds.len()];
@@ -499,6 +512,42 @@ mod tests {
             assert!(!is_real(bad), "{bad}");
         }
         assert!(is_integer("-3") && !is_integer("3.0") && !is_integer("+"));
+    }
+
+    /// What a user sees for each kind of mistake: code, the word pointed at, message, hint.
+    #[test]
+    fn diagnostics_read_well() {
+        let cases = [
+            "-rz 10 -rw 5",
+            "-rot 90",
+            "-tt 1 2 3",
+            "-t 1 x 3",
+            "-t 1 2",
+            "-s 0",
+            "-i 2.5 -rz 10",
+            "-i 99999999999",
+            "-mx extra.oct",
+        ];
+        let mut report = String::new();
+        for text in cases {
+            let d = err(text);
+            let word = &text[d.span.range()];
+            report.push_str(&format!(
+                "{text}\n  {} at '{word}': {}\n",
+                d.code.id, d.message
+            ));
+            if let Some(h) = &d.hint {
+                report.push_str(&format!("  hint: {h}\n"));
+            }
+            for l in &d.labels {
+                report.push_str(&format!(
+                    "  label '{}': {}\n",
+                    &text[l.span.range()],
+                    l.message
+                ));
+            }
+        }
+        insta::assert_snapshot!(report);
     }
 
     #[test]

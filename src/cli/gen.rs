@@ -1,4 +1,4 @@
-//! `radc genbox`, `radc genprism`, `radc xform`: Radiance's generators, same options,
+//! `radc genbox`, `radc genprism`, `radc gensky`, `radc xform`: Radiance's generators, same options,
 //! same output (see the `radc-generators` crate). This file is the host that gives
 //! them files, standard input and, only with `--allow-commands`, a shell.
 
@@ -8,6 +8,52 @@ use std::process::ExitCode;
 
 pub fn genbox(args: &[String]) -> ExitCode {
     finish("genbox", radc_generators::genbox(args))
+}
+
+pub fn gensky(args: &[String]) -> ExitCode {
+    finish("gensky", radc_generators::gensky(args))
+}
+
+pub fn genworm(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::genworm(&args, &mut host)
+    });
+    finish("genworm", result)
+}
+
+pub fn genrev(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::genrev(&args, &mut host)
+    });
+    finish("genrev", result)
+}
+
+pub fn gensurf(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::gensurf(&args, &mut host)
+    });
+    finish("gensurf", result)
+}
+
+/// calcomp recursion is legal and can be deep (genworm's curves, or a genworm run by a
+/// `!` line inside a scene given to xform): evaluate on a thread with a stack to match,
+/// as `radc calc` does.
+fn with_deep_stack(
+    work: impl FnOnce() -> Result<String, GenError> + Send + 'static,
+) -> Result<String, GenError> {
+    let worker = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(work);
+    match worker.map(|h| h.join()) {
+        Ok(Ok(result)) => result,
+        _ => Err(GenError::Invalid("evaluation failed".into())),
+    }
 }
 
 pub fn genprism(args: &[String]) -> ExitCode {
@@ -22,11 +68,12 @@ pub fn xform(args: &[String]) -> ExitCode {
     let args = match args.split_first() {
         Some((first, rest)) if first == "--allow-commands" => {
             host.allow_commands = true;
-            rest
+            rest.to_vec()
         }
-        _ => args,
+        _ => args.to_vec(),
     };
-    finish("xform", radc_generators::xform(args, &mut host))
+    let result = with_deep_stack(move || radc_generators::xform(&args, &mut host));
+    finish("xform", result)
 }
 
 fn finish(program: &str, result: Result<String, GenError>) -> ExitCode {

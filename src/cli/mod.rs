@@ -83,6 +83,26 @@ const COMMANDS: &[Command] = &[
         run: generate::genprism,
     },
     Command {
+        name: "gensky",
+        summary: "generate a CIE sky and sun, as Radiance's gensky",
+        run: generate::gensky,
+    },
+    Command {
+        name: "genrev",
+        summary: "generate a surface of revolution, as Radiance's genrev",
+        run: generate::genrev,
+    },
+    Command {
+        name: "gensurf",
+        summary: "generate a parametric surface, as Radiance's gensurf",
+        run: generate::gensurf,
+    },
+    Command {
+        name: "genworm",
+        summary: "generate a worm along a calcomp curve, as Radiance's genworm",
+        run: generate::genworm,
+    },
+    Command {
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,
