@@ -1,5 +1,5 @@
 //! How the CLI expands `!command` lines in scenes: Radiance's generators that radc
-//! builds in (genbox, genprism, xform) run in-process; any other command runs through
+//! builds in (genbox, genprism, genrev, gensky, gensurf, genworm, xform) run in-process; any other command runs through
 //! `sh` only when the user passed `--allow-commands`, and is otherwise reported as not
 //! expanded. Expanded text becomes a source file of its own so diagnostics inside it
 //! can be shown against it.
@@ -10,9 +10,6 @@ use std::path::{Path, PathBuf};
 use radc_generators::{GenError, Host};
 use radc_lang::FileId;
 use radc_lang::scene::{CommandExpander, Expansion};
-
-/// Words that make a command line more than a program and its arguments.
-const SHELL_SYNTAX: &[char] = &['|', '&', ';', '<', '>', '(', ')', '$', '`', '*', '?', '\\'];
 
 /// Files a check reads beyond the scenes named on the command line (command
 /// outputs, function files), numbered after the sources already read so diagnostics
@@ -80,43 +77,28 @@ impl<'a> Commands<'a> {
         self.pending.dir_of(file).unwrap_or_default()
     }
 
-    /// Runs a command line: a pipeline of built-in generators (`genbox ... | xform
-    /// -rz 90`) in-process, each stage reading the previous one's output; anything
-    /// else through the shell, if allowed.
+    /// Runs a command line: a built-in generator, or a pipeline of them (`genbox ... |
+    /// xform -rz 90`), in-process; anything else through the shell, if allowed.
     fn run(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
-        let Some(stages) = pipeline(command) else {
-            return self.shell(command, dir);
+        let mut host = SceneHost {
+            dir: dir.to_path_buf(),
+            stdin: String::new(),
         };
-        let mut output = String::new();
-        for (i, words) in stages.iter().enumerate() {
-            let Some((program, rest)) = words.split_first() else {
-                return self.shell(command, dir);
-            };
-            let program = program.rsplit('/').next().unwrap_or(program);
-            let mut host = SceneHost {
-                dir: dir.to_path_buf(),
-                stdin: if i == 0 {
-                    String::new()
-                } else {
-                    std::mem::take(&mut output)
-                },
-            };
-            let result = match program {
-                "genbox" => radc_generators::genbox(rest),
-                "genprism" => radc_generators::genprism(rest, &mut host),
-                "xform" => radc_generators::xform(rest, &mut host),
-                _ => return self.shell(command, dir),
-            };
-            output = result.map_err(|e| failed(program, e))?;
+        match radc_generators::command::run_builtin(command, &mut host) {
+            Some(Ok(text)) => Ok(text),
+            Some(Err(e)) => {
+                let program = command.split_whitespace().next().unwrap_or("command");
+                Err(failed(program.rsplit('/').next().unwrap_or(program), e))
+            }
+            None => self.shell(command, dir),
         }
-        Ok(output)
     }
 
     fn shell(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
         if !self.allow_commands {
             return Err(Expansion::NotExpanded {
-                reason: "radc builds in genbox, genprism and xform; other commands run only \
-                         with --allow-commands"
+                reason: "radc builds in genbox, genprism, genrev, gensky, gensurf, genworm and \
+                         xform; other commands run only with --allow-commands"
                     .into(),
             });
         }
@@ -171,73 +153,6 @@ impl CommandExpander for Commands<'_> {
     }
 }
 
-/// Splits a command line into pipeline stages of plain words; `None` if it uses any
-/// shell syntax other than `|`.
-fn pipeline(command: &str) -> Option<Vec<Vec<String>>> {
-    split_outside_quotes(command, '|')
-        .iter()
-        .map(|stage| simple_words(stage))
-        .collect()
-}
-
-/// Splits at `sep` where it is not inside quotes.
-fn split_outside_quotes(text: &str, sep: char) -> Vec<String> {
-    let mut parts = vec![String::new()];
-    let mut quote: Option<char> = None;
-    for c in text.chars() {
-        match quote {
-            Some(q) if c == q => quote = None,
-            None if c == '"' || c == '\'' => quote = Some(c),
-            None if c == sep => {
-                parts.push(String::new());
-                continue;
-            }
-            _ => {}
-        }
-        if let Some(last) = parts.last_mut() {
-            last.push(c);
-        }
-    }
-    parts
-}
-
-/// Splits a command into words as the shell would for a plain command: whitespace
-/// separated, quotes grouping. `None` if it uses any other shell syntax.
-fn simple_words(command: &str) -> Option<Vec<String>> {
-    let mut words = Vec::new();
-    let mut word = String::new();
-    let mut in_word = false;
-    let mut quote: Option<char> = None;
-    for c in command.chars() {
-        match quote {
-            Some(q) if c == q => quote = None,
-            Some(_) => word.push(c),
-            None if c == '"' || c == '\'' => {
-                quote = Some(c);
-                in_word = true;
-            }
-            None if c.is_whitespace() => {
-                if in_word {
-                    words.push(std::mem::take(&mut word));
-                    in_word = false;
-                }
-            }
-            None if SHELL_SYNTAX.contains(&c) => return None,
-            None => {
-                word.push(c);
-                in_word = true;
-            }
-        }
-    }
-    if quote.is_some() {
-        return None;
-    }
-    if in_word {
-        words.push(word);
-    }
-    Some(words)
-}
-
 /// Files for generators run from a scene: relative to the scene's folder, then RAYPATH.
 struct SceneHost {
     dir: PathBuf,
@@ -262,24 +177,5 @@ impl Host for SceneHost {
 
     fn read_stdin(&mut self) -> Result<String, GenError> {
         Ok(std::mem::take(&mut self.stdin))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn plain_commands_split_and_shell_syntax_does_not() {
-        assert_eq!(
-            simple_words("genbox 'my mat' box 1 2 3").unwrap(),
-            vec!["genbox", "my mat", "box", "1", "2", "3"]
-        );
-        assert!(simple_words("genbox m b 1 1 1 | xform -rz 90").is_none());
-        let stages = pipeline("genbox m 'a|b' 1 1 1 | xform -rz 90").unwrap();
-        assert_eq!(stages.len(), 2);
-        assert_eq!(stages[0][2], "a|b");
-        assert!(pipeline("genbox m b 1 1 1 > out.rad").is_none());
-        assert!(simple_words("cat $HOME/x").is_none());
     }
 }
