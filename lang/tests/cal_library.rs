@@ -35,7 +35,12 @@ fn cal_files(dir: &Path) -> Vec<PathBuf> {
 
 fn show(path: &Path, text: &str, d: &Diagnostic) -> String {
     let (line, col) = LineIndex::new(text).line_col(text, d.span.start as usize);
-    format!("{}:{line}:{col}: {} {}", path.display(), d.code.id, d.message)
+    format!(
+        "{}:{line}:{col}: {} {}",
+        path.display(),
+        d.code.id,
+        d.message
+    )
 }
 
 #[test]
@@ -45,7 +50,12 @@ fn every_library_file_parses_and_resolves() {
         return;
     };
     let files = cal_files(&dir);
-    assert!(files.len() > 50, "only {} .cal files in {}", files.len(), dir.display());
+    assert!(
+        files.len() > 50,
+        "only {} .cal files in {}",
+        files.len(),
+        dir.display()
+    );
     let mut failures = Vec::new();
     for path in &files {
         let bytes = std::fs::read(path).unwrap_or_default();
@@ -67,6 +77,11 @@ fn every_library_file_parses_and_resolves() {
                 .map(|d| show(path, &text, d)),
         );
     }
-    assert!(failures.is_empty(), "{} errors:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} errors:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
     println!("{} library files checked", files.len());
 }

@@ -57,12 +57,14 @@ impl Checker<'_> {
     fn run(mut self, entries: Option<&[&str]>) {
         let mine: Vec<DefId> = (0..self.m.defs().len() as u32)
             .map(DefId)
-            .filter(|&d| self.m.def(d).span.file == self.file && self.m.def(d).span != Span::default())
+            .filter(|&d| {
+                self.m.def(d).span.file == self.file && self.m.def(d).span != Span::default()
+            })
             .collect();
         let mut undefined_reported = HashSet::new();
         for &id in &mine {
             let def = self.m.def(id);
-            self.check_expr(&def.body, def, false, &mut undefined_reported);
+            self.check_expr(&def.body, false, &mut undefined_reported);
             self.check_constant(def);
         }
         for o in self.m.outputs().values() {
@@ -75,19 +77,7 @@ impl Checker<'_> {
     }
 
     fn check_top_expr(&mut self, e: &Expr, reported: &mut HashSet<SymId>) {
-        let dummy = Def {
-            sym: SymId(u32::MAX),
-            name: super::syntax::Ident {
-                name: String::new(),
-                span: Span::default(),
-            },
-            params: None,
-            kind: DefKind::Assign,
-            body: e.clone(),
-            span: Span::default(),
-            parse_time_value: None,
-        };
-        self.check_expr(e, &dummy, false, reported);
+        self.check_expr(e, false, reported);
     }
 
     fn is_defined(&self, s: SymId) -> bool {
@@ -95,14 +85,24 @@ impl Checker<'_> {
         !sym.stack.is_empty() || sym.lib.is_some() || self.m.host_name(s).is_some()
     }
 
-    fn undefined(&mut self, s: SymId, span: Span, as_function: bool, reported: &mut HashSet<SymId>) {
+    fn undefined(
+        &mut self,
+        s: SymId,
+        span: Span,
+        as_function: bool,
+        reported: &mut HashSet<SymId>,
+    ) {
         if !reported.insert(s) {
             return;
         }
         let name = &self.m.symbol(s).name;
         let what = if as_function { "function" } else { "variable" };
         let mut d = if self.complete {
-            Diagnostic::new(diagnostic::E0601, span, format!("{what} '{name}' is not defined"))
+            Diagnostic::new(
+                diagnostic::E0601,
+                span,
+                format!("{what} '{name}' is not defined"),
+            )
         } else {
             Diagnostic::new(
                 diagnostic::W0606,
@@ -122,7 +122,7 @@ impl Checker<'_> {
         self.diags.push(d);
     }
 
-    fn check_expr(&mut self, e: &Expr, def: &Def, is_argument: bool, reported: &mut HashSet<SymId>) {
+    fn check_expr(&mut self, e: &Expr, is_argument: bool, reported: &mut HashSet<SymId>) {
         match &e.node {
             Node::Var(s) => {
                 if !self.is_defined(*s) {
@@ -144,14 +144,14 @@ impl Checker<'_> {
                     self.check_call(*s, args, e.span, reported);
                 }
                 for a in args {
-                    self.check_expr(a, def, true, reported);
+                    self.check_expr(a, true, reported);
                 }
                 return;
             }
             _ => {}
         }
         for c in e.children() {
-            self.check_expr(c, def, false, reported);
+            self.check_expr(c, false, reported);
         }
     }
 
@@ -169,7 +169,10 @@ impl Checker<'_> {
     fn check_call(&mut self, s: SymId, args: &[Expr], span: Span, reported: &mut HashSet<SymId>) {
         let m = self.m;
         let name = m.symbol(s).name.clone();
-        let user = m.current_def(s).map(|id| m.def(id)).filter(|d| d.is_function());
+        let user = m
+            .current_def(s)
+            .map(|id| m.def(id))
+            .filter(|d| d.is_function());
         let (needed, max) = match (user, m.symbol(s).lib, m.host_name(s)) {
             (Some(def), _, _) => {
                 let nparams = def.params.as_ref().map_or(0, Vec::len);
@@ -206,18 +209,16 @@ impl Checker<'_> {
                 )
                 .with_hint("Radiance stops with 'too few arguments' when the missing one is used"),
             );
-        } else if let Some(max) = max {
-            if args.len() > max {
-                self.diags.push(Diagnostic::new(
-                    diagnostic::W0605,
-                    span,
-                    format!(
-                        "'{name}' takes {max} argument{}; the other {} are ignored",
-                        if max == 1 { "" } else { "s" },
-                        args.len() - max
-                    ),
-                ));
-            }
+        } else if let Some(max) = max.filter(|&max| args.len() > max) {
+            self.diags.push(Diagnostic::new(
+                diagnostic::W0605,
+                span,
+                format!(
+                    "'{name}' takes {max} argument{}; the other {} are ignored",
+                    if max == 1 { "" } else { "s" },
+                    args.len() - max
+                ),
+            ));
         }
     }
 
@@ -241,7 +242,10 @@ impl Checker<'_> {
                 Diagnostic::new(
                     diagnostic::W0602,
                     def.name.span,
-                    format!("'{}' is defined with ':' but depends on {why}", def.name.name),
+                    format!(
+                        "'{}' is defined with ':' but depends on {why}",
+                        def.name.name
+                    ),
                 )
                 .with_label(span, "this changes per record or ray")
                 .with_hint("use '=' for values that change, ':' only for true constants"),
@@ -267,7 +271,9 @@ impl Checker<'_> {
             }
             _ => {}
         }
-        e.children().into_iter().find_map(|c| self.nonconstant(c, seen))
+        e.children()
+            .into_iter()
+            .find_map(|c| self.nonconstant(c, seen))
     }
 
     fn sym_nonconstant(&self, s: SymId, seen: &mut HashSet<SymId>) -> Option<String> {
@@ -281,8 +287,12 @@ impl Checker<'_> {
             Some(d) => self.nonconstant(&d.body, seen).map(|(_, why)| why),
             None => match (m.symbol(s).lib, m.host_name(s)) {
                 (Some(LibFn::Builtin(_)), _) => None,
-                (Some(l), _) if !l.is_constant() => Some(format!("'{name}()', which is not constant")),
-                (_, Some(h)) if !h.constant => Some(format!("'{name}', which the renderer sets per ray")),
+                (Some(l), _) if !l.is_constant() => {
+                    Some(format!("'{name}()', which is not constant"))
+                }
+                (_, Some(h)) if !h.constant => {
+                    Some(format!("'{name}', which the renderer sets per ray"))
+                }
                 _ => None,
             },
         }
@@ -297,7 +307,10 @@ impl Checker<'_> {
                     Diagnostic::new(
                         diagnostic::W0601,
                         def.name.span,
-                        format!("'{}' is defined again; this definition replaces the earlier one", def.name.name),
+                        format!(
+                            "'{}' is defined again; this definition replaces the earlier one",
+                            def.name.name
+                        ),
                     )
                     .with_label(prev.name.span, "first defined here"),
                 );
@@ -308,7 +321,10 @@ impl Checker<'_> {
                 self.diags.push(Diagnostic::new(
                     diagnostic::W0604,
                     def.name.span,
-                    format!("'{}' replaces the library function of that name", def.name.name),
+                    format!(
+                        "'{}' replaces the library function of that name",
+                        def.name.name
+                    ),
                 ));
             }
         }
@@ -352,7 +368,10 @@ fn max_arg_used(e: &Expr) -> usize {
         } => n as usize,
         _ => 0,
     };
-    e.children().into_iter().map(max_arg_used).fold(own, usize::max)
+    e.children()
+        .into_iter()
+        .map(max_arg_used)
+        .fold(own, usize::max)
 }
 
 #[cfg(test)]
@@ -360,7 +379,10 @@ mod tests {
     use super::*;
 
     fn codes(text: &str, env: &Env) -> Vec<&'static str> {
-        check(FileId(0), text, env).iter().map(|d| d.code.id).collect()
+        check(FileId(0), text, env)
+            .iter()
+            .map(|d| d.code.id)
+            .collect()
     }
 
     #[test]
@@ -373,16 +395,25 @@ mod tests {
 
     #[test]
     fn arity_counts_only_used_parameters() {
-        assert_eq!(codes("f(a, b) = a; x = f(1)", &Env::rcalc()), Vec::<&str>::new());
+        assert_eq!(
+            codes("f(a, b) = a; x = f(1)", &Env::rcalc()),
+            Vec::<&str>::new()
+        );
         assert_eq!(codes("f(a, b) = b; x = f(1)", &Env::rcalc()), ["E0602"]);
         assert_eq!(codes("x = atan2(1)", &Env::rcalc()), ["E0602"]);
         assert_eq!(codes("x = sin(1, 2)", &Env::rcalc()), ["W0605"]);
-        assert_eq!(codes("x = max(1, 2, 3, 4)", &Env::rcalc()), Vec::<&str>::new());
+        assert_eq!(
+            codes("x = max(1, 2, 3, 4)", &Env::rcalc()),
+            Vec::<&str>::new()
+        );
     }
 
     #[test]
     fn functions_passed_by_name_are_fine() {
-        assert_eq!(codes("g(h, x) = h(x); y = g(sin, 1)", &Env::rcalc()), Vec::<&str>::new());
+        assert_eq!(
+            codes("g(h, x) = h(x); y = g(sin, 1)", &Env::rcalc()),
+            Vec::<&str>::new()
+        );
         assert_eq!(codes("y = sin + 1", &Env::rcalc()), ["E0603"]);
         assert_eq!(codes("v = 1; y = v(2)", &Env::rcalc()), ["E0603"]);
     }
@@ -391,7 +422,10 @@ mod tests {
     fn constants_that_are_not() {
         assert_eq!(codes("a = $1; c : 2*a", &Env::rcalc()), ["W0602"]);
         assert_eq!(codes("c : Dx*2", &Env::renderer()), ["W0602"]);
-        assert_eq!(codes("c : PI*2; d : c + sq(2)", &Env::renderer()), Vec::<&str>::new());
+        assert_eq!(
+            codes("c : PI*2; d : c + sq(2)", &Env::renderer()),
+            Vec::<&str>::new()
+        );
     }
 
     #[test]
@@ -399,20 +433,31 @@ mod tests {
         assert_eq!(codes("a = 1; a = 2; $1 = a", &Env::rcalc()), ["W0601"]);
         assert_eq!(codes("a = 1; b = 2; $1 = a", &Env::rcalc()), ["W0603"]);
         assert_eq!(codes("sin(x) = x; $1 = sin(1)", &Env::rcalc()), ["W0604"]);
-        let d = check_with_entries(FileId(0), "a = b; b = 1; c = 2", &Env::rcalc(), Some(&["a"]));
+        let d = check_with_entries(
+            FileId(0),
+            "a = b; b = 1; c = 2",
+            &Env::rcalc(),
+            Some(&["a"]),
+        );
         assert_eq!(d.len(), 1);
         assert_eq!(d[0].message, "'c' is defined but never used");
     }
 
     #[test]
     fn renderer_names_are_known_there_only() {
-        assert_eq!(codes("x = Dx + noise3(Px, Py, Pz) + sq(2)", &Env::renderer()), Vec::<&str>::new());
+        assert_eq!(
+            codes("x = Dx + noise3(Px, Py, Pz) + sq(2)", &Env::renderer()),
+            Vec::<&str>::new()
+        );
         assert_eq!(codes("x = Dx", &Env::rcalc()), ["W0606"]);
         assert_eq!(codes("x = Dx", &Env::rcalc().complete()), ["E0601"]);
     }
 
     #[test]
     fn syntax_and_fold_errors_are_reported_together() {
-        assert_eq!(codes("a = 1 +; b = x/0; c = log(", &Env::rcalc()), ["E0501", "W0606", "E0604", "E0501"]);
+        assert_eq!(
+            codes("a = 1 +; b = x/0; c = log(", &Env::rcalc()),
+            ["E0501", "W0606", "E0604", "E0501"]
+        );
     }
 }

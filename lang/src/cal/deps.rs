@@ -66,9 +66,15 @@ mod tests {
             v.sort();
             v
         };
-        assert_eq!(names(needed_by_names(&m, &["a"])), ["a", "b", "c", "f", "g"]);
+        assert_eq!(
+            names(needed_by_names(&m, &["a"])),
+            ["a", "b", "c", "f", "g"]
+        );
         assert_eq!(names(needed_by_names(&m, &["k"])), ["g", "h", "k"]);
-        assert_eq!(names(needed_by_names(&m, &["nosuch"])), Vec::<String>::new());
+        assert_eq!(
+            names(needed_by_names(&m, &["nosuch"])),
+            Vec::<String>::new()
+        );
     }
 
     #[test]

@@ -314,14 +314,12 @@ fn syntax_diagnostic(
         let last = segment[segment.len() - 1].1.clone();
         d.span = Span::new(file, last);
     }
-    if let Some(Token::Name(_)) = e.found() {
-        if s.start > 0
-            && text[..s.start]
-                .trim_end()
-                .ends_with(|c: char| c.is_ascii_alphanumeric() || c == ')')
-        {
-            d = d.with_hint("is a ';' missing between two statements?");
-        }
+    let after_operand = text
+        .get(..s.start)
+        .map(str::trim_end)
+        .is_some_and(|t| t.ends_with(|c: char| c.is_ascii_alphanumeric() || c == ')'));
+    if matches!(e.found(), Some(Token::Name(_))) && after_operand {
+        d = d.with_hint("is a ';' missing between two statements?");
     }
     if matches!(e.found(), Some(Token::RParen))
         && text.get(s.start.saturating_sub(1)..s.start) == Some("(")

@@ -6,7 +6,7 @@
 //! constant function call folds to depends on the definitions made *before* it.
 
 use super::builtins::{Builtin, LibFn, RAYINIT_NAMES, RENDERER_FUNCTIONS, RENDERER_VARIABLES};
-use super::eval::{Errno, EvalError, Evaluator, NoInput, Warning};
+use super::eval::{Errno, EvalError, Evaluator, Input, Warning};
 use super::fold;
 use super::ir::{Callee, Def, DefId, Expr, Node, OutputDef, SymId, Symbol};
 use super::syntax::{self, BinOp, DefKind, ExprKind, Ident, Statement};
@@ -386,8 +386,8 @@ impl Module {
                         }
                     }
                 }
-                (Some(v), _) if v == 0.0 => r, // E * 0
-                (_, Some(v)) if v == 0.0 => l, // 0 * E, 0 / E
+                (Some(0.0), _) => r, // E * 0 (-0 too: it compares equal)
+                (_, Some(0.0)) => l, // 0 * E, 0 / E
                 _ => build(l, r),
             },
             BinOp::Pow => {
@@ -419,7 +419,7 @@ impl Module {
     fn rconst(&mut self, e: Expr, diags: &mut Vec<Diagnostic>) -> Expr {
         let (result, errno, computed, warnings) = {
             let mut ev = Evaluator::new(self);
-            let r = ev.eval_top(&e, &mut NoInput);
+            let r = ev.eval_top(&e, &mut ParseTimeInput);
             let computed: Vec<(DefId, f64)> = ev.constants_computed().collect();
             (r, ev.errno(), computed, std::mem::take(&mut ev.warnings))
         };
@@ -629,6 +629,20 @@ const RAY_CHANNELS: &[(&str, u32)] = &[
     ("Lu", 26),
     ("Lv", 27),
 ];
+
+/// Input columns read while parsing: rcalc has read no record yet, so its empty
+/// input buffer gives 0 for every column (rcalc.c `chanvalue` on an empty line). A
+/// `:` constant that reads a column is thus 0 for good, as rcalc computes it.
+struct ParseTimeInput;
+
+impl Input for ParseTimeInput {
+    fn column(&mut self, _: u32) -> Result<(f64, Option<Errno>), EvalError> {
+        Ok((0.0, None))
+    }
+    fn column_count(&mut self) -> Result<f64, EvalError> {
+        Ok(0.0)
+    }
+}
 
 fn build_sum(l: Expr, r: Expr, span: Span) -> Expr {
     Expr {
