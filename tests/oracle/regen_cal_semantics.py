@@ -76,6 +76,8 @@ CASES = [
     ("nonconstant-constant-first-record-only", e("x:2*$1;$1=x"), "1\n2\n3\n"),
     ("forward-constant", e("$1=c*$1;c:3"), "2\n"),
     # --- definitions, laziness, caching ---
+    ("self-reference-counts", e("a=a+$1;$1=a;b=c+1;c=b*2;$2=b;$3=c"), "1\n1\n1\n"),
+    ("self-reference-n", N + e("a=a+1;$1=a;c:c+1;$2=c"), ""),
     ("forward-reference", e("$1=a;a=$1*2"), "4\n5\n"),
     ("redefinition", N + e("a=1;a=2;$1=a;b:1;b=2;$2=b;c=1;c:3;$3=c"), ""),
     ("output-redefined", N + e("$1=1;$1=2;$2=3"), ""),

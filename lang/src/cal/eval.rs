@@ -116,7 +116,8 @@ impl fmt::Display for EvalError {
 
 impl std::error::Error for EvalError {}
 
-/// Deepest call nesting evaluated before giving up with [`EvalError::TooDeep`].
+/// Deepest call nesting evaluated before giving up with [`EvalError::TooDeep`] (rcalc
+/// itself recurses until the C stack runs out).
 pub const MAX_DEPTH: u64 = 20_000;
 
 /// An active function call: the argument expressions of the call site, the values
@@ -151,6 +152,7 @@ pub struct Evaluator<'m> {
     pub warnings: Vec<Warning>,
     /// Values the host sets from outside (rcalc's `recno`, `outno`).
     overrides: Vec<(DefId, f64)>,
+    max_depth: u64,
 }
 
 impl<'m> Evaluator<'m> {
@@ -177,7 +179,15 @@ impl<'m> Evaluator<'m> {
             warn_nonconstant: module.folds(),
             warnings: Vec::new(),
             overrides: Vec::new(),
+            max_depth: MAX_DEPTH,
         }
+    }
+
+    /// Limit call nesting (each level takes a few kilobytes of stack): the default,
+    /// [`MAX_DEPTH`], wants a large stack such as `radc calc`'s evaluation thread.
+    pub fn with_max_depth(mut self, depth: u64) -> Self {
+        self.max_depth = depth;
+        self
     }
 
     /// Give a variable's definition a value set by the host, as rcalc's `varset` does
@@ -340,15 +350,25 @@ impl<'m> Evaluator<'m> {
         if fresh {
             return Ok(c.value);
         }
-        let value = self.eval(&def.body, None, input)?;
+        let before = c;
+        // The stamp is set before evaluating, as caldefn.c does: a definition that
+        // refers to itself (directly or through others) sees its previous value, so
+        // `a = a + 1` counts records instead of recursing forever.
         if let Some(c) = self.cache.get_mut(slot) {
             c.tick = match def.kind {
                 DefKind::Constant => FOREVER,
                 DefKind::Assign => self.clock,
             };
-            c.value = value;
         }
-        Ok(value)
+        let value = self.eval(&def.body, None, input);
+        if let Some(c) = self.cache.get_mut(slot) {
+            match value {
+                Ok(v) => c.value = v,
+                // A failed evaluation leaves no value behind (folding may go on).
+                Err(_) => *c = before,
+            }
+        }
+        value
     }
 
     /// calfunc.c `argument`: argument n of the active call, computed at most once, in
@@ -427,7 +447,7 @@ impl<'m> Evaluator<'m> {
                 .push(Warning::Depth(symbol.name.clone(), self.depth));
             self.next_report = self.next_report.saturating_mul(10);
         }
-        if self.depth > MAX_DEPTH {
+        if self.depth > self.max_depth {
             self.depth -= 1;
             return Err(EvalError::TooDeep(symbol.name.clone()));
         }

@@ -14,6 +14,9 @@ use crate::diagnostic::{self, Diagnostic};
 use crate::source::{FileId, Span};
 use std::collections::{BTreeMap, HashMap};
 
+/// Call nesting allowed while folding at parse time.
+const PARSE_TIME_MAX_DEPTH: u64 = 100;
+
 /// calcomp's context mark.
 const CNTXMARK: char = '`';
 /// Radiance truncates names to this many characters (calcomp.h `RMAXWORD`).
@@ -417,9 +420,12 @@ impl Module {
     /// calexpr.c `rconst`: evaluate now. An error raised while doing so is fatal in
     /// Radiance ("bad constant expression"). Expressions that need input are left.
     fn rconst(&mut self, e: Expr, diags: &mut Vec<Diagnostic>) -> Expr {
+        let mut input = ParseTimeInput::default();
         let (result, errno, computed, warnings) = {
-            let mut ev = Evaluator::new(self);
-            let r = ev.eval_top(&e, &mut ParseTimeInput);
+            // Folding runs on the caller's stack (an editor, a test thread): keep it
+            // shallow; a deeper constant recursion is left for run time.
+            let mut ev = Evaluator::new(self).with_max_depth(PARSE_TIME_MAX_DEPTH);
+            let r = ev.eval_top(&e, &mut input);
             let computed: Vec<(DefId, f64)> = ev.constants_computed().collect();
             (r, ev.errno(), computed, std::mem::take(&mut ev.warnings))
         };
@@ -431,7 +437,7 @@ impl Module {
         match result {
             Ok(v) => {
                 self.parse_warnings.extend(warnings);
-                if let Some(errno) = errno {
+                if let Some(errno) = errno.filter(|_| !input.read) {
                     let what = match errno {
                         Errno::Domain => "leaves a function's domain",
                         Errno::Range => "divides by zero or overflows",
@@ -633,13 +639,20 @@ const RAY_CHANNELS: &[(&str, u32)] = &[
 /// Input columns read while parsing: rcalc has read no record yet, so its empty
 /// input buffer gives 0 for every column (rcalc.c `chanvalue` on an empty line). A
 /// `:` constant that reads a column is thus 0 for good, as rcalc computes it.
-struct ParseTimeInput;
+#[derive(Default)]
+struct ParseTimeInput {
+    /// A column was read: the value depends on input, so an error found while
+    /// folding is a property of rcalc's empty first buffer, not of the program.
+    read: bool,
+}
 
 impl Input for ParseTimeInput {
     fn column(&mut self, _: u32) -> Result<(f64, Option<Errno>), EvalError> {
+        self.read = true;
         Ok((0.0, None))
     }
     fn column_count(&mut self) -> Result<f64, EvalError> {
+        self.read = true;
         Ok(0.0)
     }
 }
