@@ -123,6 +123,22 @@ CASES = [
 ]
 
 
+def rcalc_path():
+    """rcalc from PATH (tests/oracle/env.sh), else from the pyradiance running this."""
+    import shutil
+    found = shutil.which("rcalc")
+    if found:
+        return found
+    try:
+        import pyradiance
+        return os.path.join(os.path.dirname(pyradiance.__file__), "bin", "rcalc")
+    except ImportError:
+        sys.exit("rcalc not found: source tests/oracle/env.sh or run with .oracle/bin/python")
+
+
+RCALC = rcalc_path()
+
+
 def run(args, stdin):
     env = dict(os.environ)
     env["RAYPATH"] = DATA
@@ -130,7 +146,7 @@ def run(args, stdin):
         # The record comes from a file argument instead of stdin.
         args = args + ["data.txt"]
         stdin = ""
-    p = subprocess.run(["rcalc", "-w"] + args, input=stdin.encode(), capture_output=True,
+    p = subprocess.run([RCALC, "-w"] + args, input=stdin.encode(), capture_output=True,
                        cwd=DATA, env=env, timeout=60)
     return {"stdout": p.stdout.decode("utf-8", "replace"), "status": p.returncode}
 
