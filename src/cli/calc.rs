@@ -45,7 +45,7 @@ pub fn run(args: &[String]) -> ExitCode {
     let mut module = Module::new(&Env {
         host: Host::Rcalc,
         fold: true,
-        complete: false,
+        complete: true,
     });
     let mut sources = Sources {
         names: Vec::new(),

@@ -250,36 +250,48 @@ impl<'m> Evaluator<'m> {
             Node::Sum(v) => {
                 let mut sum = 0.0;
                 for x in v {
-                    sum += self.eval(x, act, input)?;
+                    let x = self.eval(x, act, input)?;
+                    sum = nan_first(sum, x, sum + x);
                 }
                 sum
             }
             Node::Product(v) => {
                 let mut prod = 1.0;
                 for x in v {
-                    prod *= self.eval(x, act, input)?;
+                    let x = self.eval(x, act, input)?;
+                    prod = nan_first(prod, x, prod * x);
                 }
                 prod
             }
             Node::Sub(a, b) => {
                 let a = self.eval(a, act, input)?;
-                a - self.eval(b, act, input)?
+                let b = self.eval(b, act, input)?;
+                nan_first(a, b, a - b)
             }
-            // calexpr.c `edivi` evaluates the denominator first.
+            // calexpr.c `edivi` evaluates the denominator first. The reference rcalc
+            // (built with -ffast-math) also takes its "den == 0" branch for a NaN
+            // denominator, warning and raising errno, yet returns the quotient: checked
+            // against rcalc (`echo nan | rcalc -e '$1=1/$1'` warns and prints nan).
             Node::Div(a, b) => {
                 let den = self.eval(b, act, input)?;
-                if den == 0.0 {
+                if den == 0.0 || den.is_nan() {
                     self.warnings.push(Warning::DivisionByZero);
                     self.errno = Some(Errno::Range);
+                }
+                if den == 0.0 {
                     0.0
                 } else {
-                    self.eval(a, act, input)? / den
+                    let a = self.eval(a, act, input)?;
+                    nan_first(den, a, a / den)
                 }
             }
             Node::Pow(a, b) => {
+                // `pow(evalue(base), evalue(exponent))`: the reference build (GCC,
+                // x86-64) evaluates C arguments right to left, so the exponent goes
+                // first and a library call in the base clears an error it raised.
                 self.errno = None;
-                let x = self.eval(a, act, input)?;
                 let y = self.eval(b, act, input)?;
+                let x = self.eval(a, act, input)?;
                 let d = x.powf(y);
                 self.check_nonfinite(d);
                 if self.errno.is_some() {
@@ -554,9 +566,10 @@ impl<'m> Evaluator<'m> {
                 }
                 best
             }
+            // Arguments right to left, as for `^`.
             Builtin::Atan2 => {
-                let y = self.argument(act, 1, input)?;
                 let x = self.argument(act, 2, input)?;
+                let y = self.argument(act, 1, input)?;
                 y.atan2(x)
             }
             other => {
@@ -564,6 +577,20 @@ impl<'m> Evaluator<'m> {
                 other.unary(x).unwrap_or(0.0)
             }
         })
+    }
+}
+
+/// x86 SSE arithmetic with two NaN operands returns the first (the destination
+/// register); LLVM may swap the operands of `+` and `*`, so the choice is made here,
+/// in the order the reference rcalc's code uses (checked: `nan + -nan` is `nan`,
+/// `nan / -nan` is `-nan`). With one NaN operand, that NaN is the result.
+fn nan_first(first: f64, second: f64, result: f64) -> f64 {
+    if first.is_nan() {
+        first
+    } else if second.is_nan() {
+        second
+    } else {
+        result
     }
 }
 

@@ -101,6 +101,8 @@ pub struct Module {
     host_names: HashMap<SymId, HostName>,
     context: String,
     fold: bool,
+    /// Errors while folding are the program's own (see [`Env::complete`]).
+    complete: bool,
     /// Warnings Radiance prints while folding at parse time.
     pub parse_warnings: Vec<Warning>,
 }
@@ -109,6 +111,7 @@ impl Module {
     pub fn new(env: &Env) -> Self {
         let mut m = Module {
             fold: env.fold,
+            complete: env.complete,
             ..Module::default()
         };
         for b in Builtin::ALL {
@@ -437,24 +440,45 @@ impl Module {
         match result {
             Ok(v) => {
                 self.parse_warnings.extend(warnings);
-                if let Some(errno) = errno.filter(|_| !input.read) {
+                if let Some(errno) = errno {
                     let what = match errno {
                         Errno::Domain => "leaves a function's domain",
                         Errno::Range => "divides by zero or overflows",
                     };
-                    diags.push(
-                        Diagnostic::new(
-                            diagnostic::E0604,
-                            e.span,
-                            format!("this constant expression {what}"),
-                        )
-                        .with_hint("Radiance stops with 'bad constant expression'"),
-                    );
+                    // In a library checked alone, a constant that read input columns
+                    // got rcalc's empty first record: only a complete program knows.
+                    if self.complete || !input.read {
+                        diags.push(
+                            Diagnostic::new(
+                                diagnostic::E0604,
+                                e.span,
+                                format!("this constant expression {what}"),
+                            )
+                            .with_hint("Radiance stops with 'bad constant expression'"),
+                        );
+                    }
                 }
                 Expr::num(v, e.span)
             }
-            Err(EvalError::NoInput | EvalError::NotAvailable(_)) => e,
-            Err(_) => e,
+            // Past our own depth limit, or needing the renderer: left for run time.
+            Err(EvalError::TooDeep(_) | EvalError::NotAvailable(_) | EvalError::NoInput) => e,
+            // A name not defined yet: fatal for rcalc, which folds as it parses; in a
+            // library it is a free name its user defines.
+            Err(err) => {
+                if self.complete {
+                    diags.push(
+                        Diagnostic::new(
+                            diagnostic::E0701,
+                            e.span,
+                            format!("folding this constant fails: {err}"),
+                        )
+                        .with_hint(
+                            "Radiance evaluates ':' constants as it reads them: define what they use first",
+                        ),
+                    );
+                }
+                e
+            }
         }
     }
 
