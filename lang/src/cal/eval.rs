@@ -91,6 +91,8 @@ pub enum EvalError {
     ArgumentNotFunction(String),
     NoInput,
     IllegalChannel,
+    /// `select` with an index beyond C's `int` ("Bad call to argument!").
+    BadArgumentCall,
     /// A renderer function called outside the renderer.
     NotAvailable(String),
     /// Recursion deeper than [`MAX_DEPTH`]; Radiance would run out of stack.
@@ -105,6 +107,7 @@ impl fmt::Display for EvalError {
             EvalError::TooFewArguments(n) => write!(f, "{n}(): too few arguments"),
             EvalError::ArgumentNotFunction(n) => write!(f, "{n}(): argument not a function"),
             EvalError::NoInput => write!(f, "no column input"),
+            EvalError::BadArgumentCall => write!(f, "Bad call to argument!"),
             EvalError::IllegalChannel => write!(f, "illegal channel number"),
             EvalError::NotAvailable(n) => {
                 write!(f, "{n}(): only the renderer can evaluate this function")
@@ -268,21 +271,20 @@ impl<'m> Evaluator<'m> {
                 let b = self.eval(b, act, input)?;
                 nan_first(a, b, a - b)
             }
-            // calexpr.c `edivi` evaluates the denominator first. The reference rcalc
-            // (built with -ffast-math) also takes its "den == 0" branch for a NaN
-            // denominator, warning and raising errno, yet returns the quotient: checked
-            // against rcalc (`echo nan | rcalc -e '$1=1/$1'` warns and prints nan).
+            // calexpr.c `edivi` evaluates the denominator first and, when it is zero,
+            // warns, raises errno and returns 0. The reference rcalc is built with
+            // -ffast-math, which returns the denominator itself there (no signed
+            // zeros: `1/-0` gives -0) and also takes that branch for a NaN
+            // denominator (finite math: `1/nan` warns and gives that NaN). Checked
+            // against rcalc.
             Node::Div(a, b) => {
                 let den = self.eval(b, act, input)?;
                 if den == 0.0 || den.is_nan() {
                     self.warnings.push(Warning::DivisionByZero);
                     self.errno = Some(Errno::Range);
-                }
-                if den == 0.0 {
-                    0.0
+                    den
                 } else {
-                    let a = self.eval(a, act, input)?;
-                    nan_first(den, a, a / den)
+                    self.eval(a, act, input)? / den
                 }
             }
             Node::Pow(a, b) => {
@@ -540,6 +542,10 @@ impl<'m> Evaluator<'m> {
                     0.0
                 } else if n == 0 {
                     (nargs - 1) as f64
+                } else if n < 0 {
+                    // An index past C's int range converts to INT_MIN: rcalc then
+                    // stops with "Bad call to argument!".
+                    return Err(EvalError::BadArgumentCall);
                 } else {
                     self.argument(act, n as u32 + 1, input)?
                 }
@@ -594,8 +600,13 @@ fn nan_first(first: f64, second: f64, result: f64) -> f64 {
     }
 }
 
-/// `(int)(x + .5)` as C computes it: truncation toward zero (saturating here where C
-/// would be undefined).
+/// `(int)(x + .5)` as the reference rcalc computes it on x86-64: truncation toward
+/// zero, and `INT_MIN` for NaN or anything outside `int` (`cvttsd2si`).
 pub fn c_round(x: f64) -> i64 {
-    (x + 0.5) as i64
+    let v = x + 0.5;
+    if v.is_nan() || v >= 2_147_483_648.0 || v <= -2_147_483_649.0 {
+        i64::from(i32::MIN)
+    } else {
+        v as i64
+    }
 }

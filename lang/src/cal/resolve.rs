@@ -373,7 +373,7 @@ impl Module {
             },
             BinOp::Mul | BinOp::Div => match (rn, ln) {
                 (Some(v), _) if op == BinOp::Div => {
-                    if v == 0.0 {
+                    if fast_eq(v, 0.0) {
                         diags.push(
                             Diagnostic::new(
                                 diagnostic::E0604,
@@ -392,16 +392,17 @@ impl Module {
                         }
                     }
                 }
-                (Some(0.0), _) => r, // E * 0 (-0 too: it compares equal)
-                (_, Some(0.0)) => l, // 0 * E, 0 / E
+                (Some(v), _) if fast_eq(v, 0.0) => r, // E * 0
+                (_, Some(v)) if fast_eq(v, 0.0) => l, // 0 * E, 0 / E
                 _ => build(l, r),
             },
             BinOp::Pow => {
-                if ln == Some(0.0) {
+                let is = |x: Option<f64>, c: f64| x.is_some_and(|v| fast_eq(v, c));
+                if is(ln, 0.0) {
                     l // 0 ^ E
-                } else if rn == Some(0.0) || ln == Some(1.0) {
+                } else if is(rn, 0.0) || is(ln, 1.0) {
                     Expr::num(1.0, span) // E ^ 0, 1 ^ E
-                } else if rn == Some(1.0) {
+                } else if is(rn, 1.0) {
                     l // E ^ 1
                 } else {
                     build(l, r)
@@ -679,6 +680,13 @@ impl Input for ParseTimeInput {
         self.read = true;
         Ok(0.0)
     }
+}
+
+/// `==` on doubles as the reference rcalc (built with -ffast-math) compiles it in
+/// calexpr.c's folding: a NaN constant compares equal to anything, so `E^sqrt(-1)`
+/// folds to 1 and `E/sqrt(-1)` is "divide by zero constant" (checked against rcalc).
+fn fast_eq(v: f64, c: f64) -> bool {
+    v == c || v.is_nan()
 }
 
 fn build_sum(l: Expr, r: Expr, span: Span) -> Expr {
