@@ -64,6 +64,7 @@ CASES = [
     ("fold-nan-constants", e("$1=sqrt(-1)*$1;$2=$1*sqrt(-1);$3=$1^sqrt(-1);$4=sqrt(-1)^$1;$5=sqrt(-1)/$1;$6=$1+sqrt(-1);$7=$1-sqrt(-1)"), "2\n"),
     ("fold-divide-by-nan-constant", e("$1=$1/sqrt(-1)"), "2\n"),
     ("division-by-negative-zero", e("z=-$1;$1=1/z;$2=-1/z;$3=1/$1;c:3.25/-$1*k;k=2^$1;$4=c"), "0\n"),
+    ("zero-signs", e("z=$1;$1=ceil(-0.5);$2=ceil(z);$3=floor(-z);$4=sin(-z);$5=tan(-z);$6=atan(-z);$7=asin(-z);$8=sqrt(-z);$9=-z;$10=ceil(-0.5+z);$11=atan2(-z,1);$12=log10(1+z)*-1;$13=y*ceil(y*.001-1);y=-2/3+z"), "0\n"),
     ("nan-signs", N + e("i=1e300*1e300;$1=acos(2);$2=asin(-2);$3=log(-1);$4=log10(-1);$5=sqrt(-1);$6=(-1)^.5;$7=sin(i);$8=i-i;$9=exp(-i);$10=atan2(i,i);$11=-acos(2)"), ""),
     ("nan-input", e("n=$1;$1=n;$2=-n;$3=acos(n);$4=n^2;$5=max(n,1);$6=n+1;$7=floor(n)"), "nan\n-nan\n"),
     ("select-error-propagates", e("$1=max(select(9,$1),3);$2=1+select(9,$1)"), "1\n"),

@@ -100,10 +100,12 @@ impl Builtin {
             Builtin::Acos => x.acos(),
             Builtin::Asin => x.asin(),
             Builtin::Atan => x.atan(),
-            Builtin::Ceil => x.ceil(),
+            // The reference rcalc's floor and ceil (inlined under -ffast-math) never
+            // return -0: ceil(-0.5) and floor(-0) print 0. Checked against rcalc.
+            Builtin::Ceil => no_negative_zero(x.ceil()),
             Builtin::Cos => x.cos(),
             Builtin::Exp => x.exp(),
-            Builtin::Floor => x.floor(),
+            Builtin::Floor => no_negative_zero(x.floor()),
             Builtin::Log => x.ln(),
             Builtin::Log10 => x.log10(),
             Builtin::Rand => rand(x),
@@ -143,6 +145,10 @@ impl Builtin {
 /// The NaN x86 SSE arithmetic produces for an invalid operation (`0/0`, `sqrt(-1)`):
 /// sign bit set, printed `-nan` by glibc.
 pub const DEFAULT_NAN: f64 = f64::from_bits(0xfff8_0000_0000_0000);
+
+fn no_negative_zero(x: f64) -> f64 {
+    if x == 0.0 { 0.0 } else { x }
+}
 
 /// calcomp's `rand`: a deterministic hash, not a generator, so a scene renders the
 /// same every time. The constants are calfunc.c's (`e` and `pi/4` to 15 digits); the
