@@ -125,6 +125,13 @@ CASES = [
     ("no-input-no-output", e("$1=1"), ""),
     ("n-with-input-names-fails", N + e("$1=$1"), ""),
     ("file-arguments", e("$1=$1*2"), None),
+    # --- output formats (rcalc.c putrec) ---
+    ("format-inline", ["-s", "s=hello", "-o", "$(s) x=${ a*1000.5 } [${b}] $$ ${a/3}"] + e("a=$1;b=$2"), "1.5 2\n-3 1e6\n"),
+    ("format-adjacent", ["-o", "${a}${b};${a+b}"] + e("a=$1;b=$2"), "1.5 2\n0.1 -7\n"),
+    ("format-wide-fields", ["-o", "v ${  a/3          } w ${b/7 }\n"] + e("a=$1;b=$2"), "1 2\n1e10 3\n"),
+    ("format-with-n", N + ["-o", "pi=${PI} e=${exp(1)}"], ""),
+    ("format-undefined-string", ["-o", "$(nope) ${1}"], "1\n"),
+    ("format-cond", ["-o", "${$1}"] + e("cond=$1-1"), "1\n2\n3\n"),
     # --- files and RAYPATH ---
     ("function-file", ["-f", "defs.cal"] + N + e("$1=hyp(3,4);$2=twice(sq,3);$3=scale;$4=local"), ""),
     ("function-file-missing", ["-f", "nosuch.cal"] + N + e("$1=1"), ""),

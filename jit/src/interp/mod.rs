@@ -10,8 +10,9 @@ pub use columns::{Record, c_atof};
 pub use format::{format_g, format_outputs};
 
 use radc_lang::cal::Module;
-use radc_lang::cal::eval::{EvalError, Evaluator, MathErrors, NoInput, Warning};
+use radc_lang::cal::eval::{EvalError, Evaluator, Input, MathErrors, NoInput, Warning};
 use radc_lang::cal::ir::DefId;
+use radc_lang::cal::ir::Expr;
 use radc_lang::cal::syntax::DefKind;
 use std::fmt;
 
@@ -22,6 +23,8 @@ pub enum Error {
     Eval(EvalError),
     /// rcalc refuses a `cond` defined with `:` ("cond: defined as constant").
     ConstantCond,
+    /// An output format names a string variable no `-s` set.
+    UndefinedString(String),
 }
 
 impl fmt::Display for Error {
@@ -29,6 +32,7 @@ impl fmt::Display for Error {
         match self {
             Error::Eval(e) => e.fmt(f),
             Error::ConstantCond => write!(f, "cond: defined as constant"),
+            Error::UndefinedString(n) => write!(f, "{n}: undefined string"),
         }
     }
 }
@@ -93,12 +97,27 @@ impl<'m> Interpreter<'m> {
 
     /// rcalc `-n`: one record with no input.
     pub fn single(&mut self) -> Result<Outputs, Error> {
-        self.ev.next_record();
+        self.begin_single();
         self.outputs(&mut NoInput)
+    }
+
+    /// Start rcalc's single `-n` record, for callers that evaluate their own
+    /// expressions (an `-o` format) with [`Interpreter::eval`].
+    pub fn begin_single(&mut self) {
+        self.ev.next_record();
     }
 
     /// One input record: `None` when `cond` rejects it.
     pub fn record(&mut self, record: &mut Record) -> Result<Option<Outputs>, Error> {
+        if !self.begin_record(record)? {
+            return Ok(None);
+        }
+        self.outputs(record).map(Some)
+    }
+
+    /// Start a record (rcalc.c `execute`): set `recno`/`outno`, expire `=` values and
+    /// test `cond`. `false` when the record is filtered out.
+    pub fn begin_record(&mut self, record: &mut Record) -> Result<bool, Error> {
         self.nrecs += 1;
         if let Some(d) = self.recno {
             self.ev.set_value(d, self.nrecs as f64);
@@ -109,15 +128,25 @@ impl<'m> Interpreter<'m> {
         self.ev.next_record();
         if let Some(c) = self.cond {
             if self.ev.variable(c, record)? <= 0.0 {
-                return Ok(None);
+                return Ok(false);
             }
         }
-        let out = self.outputs(record)?;
         self.nout += 1;
-        Ok(Some(out))
+        Ok(true)
     }
 
-    fn outputs(&mut self, input: &mut dyn radc_lang::cal::eval::Input) -> Result<Outputs, Error> {
+    /// Evaluate an expression of this module (an `-o` format field) in the current
+    /// record.
+    pub fn eval(&mut self, e: &'m Expr, input: &mut dyn Input) -> Result<f64, Error> {
+        Ok(self.ev.eval_top(e, input)?)
+    }
+
+    /// The `$N` columns of the record begun with [`Interpreter::begin_record`].
+    pub fn outputs_for(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
+        self.outputs(input)
+    }
+
+    fn outputs(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
         let mut out = Vec::with_capacity(self.module.outputs().len());
         for (chan, o) in self.module.outputs() {
             match self.ev.eval_top(&o.body, input) {

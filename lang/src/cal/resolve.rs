@@ -216,6 +216,19 @@ impl Module {
         diags
     }
 
+    /// Parse and lower one expression in the current definitions (an rcalc `-o`
+    /// format field: calexpr.c `eparse`, folded but never flattened).
+    pub fn add_expression(&mut self, file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic>> {
+        let e = super::parser::parse_expr(file, text)?;
+        let mut diags = Vec::new();
+        let lowered = self.lower(&e, None, &mut diags);
+        if diags.iter().any(Diagnostic::is_error) {
+            Err(diags)
+        } else {
+            Ok(lowered)
+        }
+    }
+
     /// Add parsed statements in order, folding as Radiance would at each point.
     pub fn add_program(&mut self, program: &syntax::Program) -> Vec<Diagnostic> {
         let mut diags = Vec::new();

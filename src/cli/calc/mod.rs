@@ -1,13 +1,19 @@
 //! `radc calc`: rcalc, command-line compatible for the common options
-//! (`-e -f -n -s -t -w -u -i{a,d,f} -o{a,d,f} -in -on`, file arguments).
+//! (`-e -f -n -s -t -w -u -b -i{a,d,f} -o{a,d,f} -o format -in -on`, file arguments;
+//! not `-i format`, `-p`, `-P`).
 //! Syntax and resolution errors are diagnostics (exit 1); runtime warnings use rcalc's
 //! own words on stderr; bad options exit 2.
 
+mod format;
+
 use super::USAGE_ERROR;
+use format::{Field, Value};
 use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs};
 use radc_lang::cal::eval::MathErrors;
+use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
 use radc_lang::{Diagnostic, FileId};
+use std::collections::HashMap;
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -33,6 +39,18 @@ struct Options {
     in_limit: u64,
     out_limit: u64,
     files: Vec<String>,
+    /// `-o format`: its fields and the compiled expression of each number field.
+    record_format: Option<(Vec<Field>, Vec<Option<Expr>>)>,
+    /// `-s name=value`.
+    strings: HashMap<String, String>,
+    /// rcalc's `-b` (blanks compare equal), on by default.
+    blanks_equal: bool,
+}
+
+/// One output record.
+enum Produced {
+    Columns(Outputs),
+    Text(String),
 }
 
 /// The texts compiled so far, by `FileId`, for rendering diagnostics.
@@ -63,6 +81,9 @@ pub fn run(args: &[String]) -> ExitCode {
         in_limit: 0,
         out_limit: 0,
         files: Vec::new(),
+        record_format: None,
+        strings: HashMap::new(),
+        blanks_equal: true,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -80,7 +101,8 @@ pub fn run(args: &[String]) -> ExitCode {
             }
             "-w" => o.nowarn = !o.nowarn,
             "-u" => o.unbuffered = !o.unbuffered,
-            "-b" | "-l" => {}
+            "-b" => o.blanks_equal = !o.blanks_equal,
+            "-l" => {}
             "-e" => match value() {
                 Some(expr) => add(&mut module, &mut sources, &mut diags, "-e".into(), expr),
                 None => return usage("-e needs an expression"),
@@ -104,11 +126,28 @@ pub fn run(args: &[String]) -> ExitCode {
                 },
                 None => return usage("-f needs a file name"),
             },
-            "-s" => {
-                // String variables only matter to -i/-o record formats.
-                if value().is_none() {
-                    return usage("-s needs svar=sval");
+            "-s" => match value() {
+                // rcalc.c `svpreset`: a string variable for record formats.
+                Some(eq) => {
+                    if let Some((k, v)) = eq.split_once('=') {
+                        o.strings.insert(k.to_string(), v.to_string());
+                    }
                 }
+                None => return usage("-s needs svar=sval"),
+            },
+            "-o" => match value() {
+                Some(spec) => match compile_format(&mut module, &mut sources, &mut diags, &spec) {
+                    Ok(f) => {
+                        o.otype = Format::Ascii;
+                        o.record_format = Some(f);
+                    }
+                    Err(code) => return code,
+                },
+                None => return usage("-o needs a format"),
+            },
+            "-i" => {
+                eprintln!("radc calc: input record formats (-i format) are not supported yet");
+                return ExitCode::from(USAGE_ERROR);
             }
             "-in" | "-on" => {
                 let Some(n) = value().and_then(|v| v.parse::<u64>().ok()) else {
@@ -173,6 +212,54 @@ pub fn run(args: &[String]) -> ExitCode {
     }
 }
 
+/// rcalc.c `readfmt`: an inline format if it holds a `$`, else a file holding one.
+/// Number fields are compiled now, against the definitions made so far.
+fn compile_format(
+    module: &mut Module,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+    spec: &str,
+) -> Result<(Vec<Field>, Vec<Option<Expr>>), ExitCode> {
+    let text = if spec.contains('$') {
+        spec.to_string()
+    } else {
+        match std::fs::read(spec) {
+            Ok(b) if !b.is_empty() => String::from_utf8_lossy(&b).into_owned(),
+            Ok(_) => {
+                eprintln!("radc calc: {spec}: empty file");
+                return Err(ExitCode::FAILURE);
+            }
+            Err(e) => {
+                eprintln!("radc calc: {spec}: cannot open: {e}");
+                return Err(ExitCode::FAILURE);
+            }
+        }
+    };
+    let fields = format::parse(&text).map_err(|e| {
+        eprintln!("radc calc: {e} in output format");
+        ExitCode::FAILURE
+    })?;
+    let mut exprs = Vec::with_capacity(fields.len());
+    for f in &fields {
+        exprs.push(match f {
+            Field::Number { expr, .. } => {
+                let file = FileId(sources.texts.len() as u32);
+                sources.names.push("-o".into());
+                sources.texts.push(expr.clone());
+                match module.add_expression(file, expr) {
+                    Ok(e) => Some(e),
+                    Err(d) => {
+                        diags.extend(d);
+                        None
+                    }
+                }
+            }
+            _ => None,
+        });
+    }
+    Ok((fields, exprs))
+}
+
 fn add(m: &mut Module, s: &mut Sources, diags: &mut Vec<Diagnostic>, name: String, text: String) {
     let file = FileId(s.texts.len() as u32);
     diags.extend(m.add_source(file, &text));
@@ -219,7 +306,7 @@ fn find_on_raypath(name: &str) -> Option<PathBuf> {
         .find(|c| c.is_file())
 }
 
-fn execute(module: &Module, o: &Options) -> ExitCode {
+fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
     let mut interp = match Interpreter::new(module, MathErrors::default()) {
         Ok(i) => i,
         Err(e) => {
@@ -230,8 +317,9 @@ fn execute(module: &Module, o: &Options) -> ExitCode {
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     let status = if o.noinput {
-        let r = interp.single().map(Some);
-        emit(&mut out, &mut interp, o, r)
+        interp.begin_single();
+        let r = produce(&mut interp, o, &mut radc_lang::cal::eval::NoInput);
+        emit(&mut out, &mut interp, o, r.map(Some))
     } else if o.files.is_empty() {
         let stdin = std::io::stdin();
         let mut input = stdin.lock();
@@ -271,10 +359,10 @@ enum Stop {
     Failed,
 }
 
-fn run_stream(
+fn run_stream<'m>(
     input: &mut dyn BufRead,
-    interp: &mut Interpreter<'_>,
-    o: &Options,
+    interp: &mut Interpreter<'m>,
+    o: &'m Options,
     out: &mut dyn Write,
 ) -> Result<(), Stop> {
     let mut nrecs = 0u64;
@@ -298,7 +386,11 @@ fn run_stream(
         nrecs += 1;
         let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
         let mut record = Record::new(&text, sep);
-        let result = interp.record(&mut record);
+        let result = match interp.begin_record(&mut record) {
+            Ok(true) => produce(interp, o, &mut record).map(Some),
+            Ok(false) => Ok(None),
+            Err(e) => Err(e),
+        };
         let produced = matches!(result, Ok(Some(_)));
         emit(out, interp, o, result)?;
         if produced {
@@ -337,11 +429,48 @@ fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize) -> Option<String
     Some(text)
 }
 
+/// The output of an accepted record: the `$N` columns, or the `-o` format filled in
+/// (rcalc.c `putout`).
+fn produce<'m>(
+    interp: &mut Interpreter<'m>,
+    o: &'m Options,
+    input: &mut dyn radc_lang::cal::eval::Input,
+) -> Result<Produced, radc_jit::Error> {
+    let Some((fields, exprs)) = &o.record_format else {
+        return interp.outputs_for(input).map(Produced::Columns);
+    };
+    let mut numbers = Vec::with_capacity(fields.len());
+    for e in exprs {
+        numbers.push(match e {
+            Some(e) => interp.eval(e, input)?,
+            None => 0.0,
+        });
+    }
+    let mut values = Vec::with_capacity(fields.len());
+    for (f, n) in fields.iter().zip(&numbers) {
+        values.push(match f {
+            Field::Literal(_) => Value::Literal,
+            Field::Number { .. } => Value::Number(*n),
+            Field::Text { name, .. } => match o.strings.get(name) {
+                Some(v) => Value::Text(v),
+                None => {
+                    return Err(radc_jit::Error::UndefinedString(name.clone()));
+                }
+            },
+        });
+    }
+    Ok(Produced::Text(format::render(
+        fields,
+        &values,
+        o.blanks_equal,
+    )))
+}
+
 fn emit(
     out: &mut dyn Write,
     interp: &mut Interpreter<'_>,
     o: &Options,
-    result: Result<Option<Outputs>, radc_jit::Error>,
+    result: Result<Option<Produced>, radc_jit::Error>,
 ) -> Result<(), Stop> {
     let warnings = interp.take_warnings();
     if !o.nowarn && !warnings.is_empty() {
@@ -351,10 +480,13 @@ fn emit(
         }
     }
     match result {
-        Ok(Some(values)) => {
-            let written = match o.otype {
-                Format::Ascii => out.write_all(format_outputs(&values, o.sep).as_bytes()),
-                binary => out.write_all(&binary_record(&values, binary)),
+        Ok(Some(produced)) => {
+            let written = match (produced, o.otype) {
+                (Produced::Text(t), _) => out.write_all(t.as_bytes()),
+                (Produced::Columns(v), Format::Ascii) => {
+                    out.write_all(format_outputs(&v, o.sep).as_bytes())
+                }
+                (Produced::Columns(v), binary) => out.write_all(&binary_record(&v, binary)),
             };
             if written.is_err() {
                 return Err(Stop::Failed);
