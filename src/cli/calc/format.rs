@@ -193,7 +193,7 @@ mod tests {
                 Field::Literal("x=".into()),
                 Field::Number {
                     expr: "a+1".into(),
-                    width: 11
+                    width: 10
                 },
                 Field::Literal(" ".into()),
                 Field::Text {
