@@ -200,7 +200,8 @@ mod tests {
                     name: "name".into(),
                     width: 7
                 },
-                Field::Literal("$\n".into()),
+                Field::Literal("$".into()),
+                Field::Literal("\n".into()),
             ]
         );
         assert!(parse("$x").is_err());
