@@ -37,11 +37,35 @@ def expr(d):
     for _ in range(random.randint(0,3)):
         e += random.choice(["+","-","*","/","^","*","+"]) + unary(d)
     return e
+def program():
+    """A random program; some definitions constant, some functions passed by name."""
+    kind = random.choice([":", "="])
+    defs = [
+        "x=$1*2-1", "y=$2/3",
+        "c%s%s" % (kind, expr(1)),
+        "k=%s" % expr(1),
+        "f(a,b)%s a*b-%s" % (random.choice([":", "="]), expr(1).replace("$1", "a").replace("$2", "b")),
+        "g(h,v)=h(v)+{comment {nested}}%s" % random.choice(["1", "v", "h(v*2)"]),
+        "r(n)=if(n-.5,n+r(n-1),0)",
+    ]
+    random.shuffle(defs)
+    outs = []
+    for j in range(3):
+        e = expr(2)
+        r = random.random()
+        if r < 0.15:
+            e = "g(%s,%s)" % (random.choice(FUNCS1 + ["f", "g"] if False else FUNCS1), e)
+        elif r < 0.25:
+            e = "r(%s)" % random.choice(["3", "floor(abs1)", "5.2"]).replace("abs1", "$1*$1")
+        elif r < 0.3:
+            e = "in(%s)+%s" % (random.choice(["0", "1", "2", "3"]), e)
+        outs.append("$%d=%s" % (j + 1, e))
+    return ";".join(defs + outs)
+
+
 fails = 0
 for i in range(int(sys.argv[2]) if len(sys.argv) > 2 else 200):
-    defs = "x=$1*2-1;y=$2/3;c:%s;k=%s;f(a,b)=a*b-%s;" % (expr(1), expr(1), expr(1))
-    outs = ";".join("$%d=%s" % (j+1, expr(2)) for j in range(3))
-    prog = defs + outs
+    prog = program()
     nflag = random.random() < 0.3
     args = (["-n"] if nflag else []) + ["-e", prog.replace("$1","1.5").replace("$2","-2") if nflag else prog]
     inp = "1.5 -2\n0 0\n3 0.25\n-7 1e10\n"
