@@ -132,6 +132,14 @@ CASES = [
     ("format-with-n", N + ["-o", "pi=${PI} e=${exp(1)}"], ""),
     ("format-undefined-string", ["-o", "$(nope) ${1}"], "1\n"),
     ("format-cond", ["-o", "${$1}"] + e("cond=$1-1"), "1\n2\n3\n"),
+    # --- input formats (rcalc.c getrec, getfield) ---
+    ("iformat-numbers-strings", ["-i", "x=${a} y=${b} name=$(n)"] + e("$1=a;$2=b*2"), "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
+    ("iformat-to-oformat", ["-i", "x=${a} y=${b} name=$(n)", "-o", "${a+b}: $(n)"], "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
+    ("iformat-no-final-newline-match", ["-i", "x=${a} y=${b}", "-o", "${a+b}"], "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
+    ("iformat-repeated-variable", ["-i", "${a} ${a}"] + e("$1=a"), "1 1\n2 3\n4 4.003\n5 5.0001\n"),
+    ("iformat-cond-recno", ["-i", "x=${a} y=${b} name=$(n)"] + e("$1=a;$2=recno;$3=outno;cond=a-2"), "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
+    ("iformat-preset-string", ["-s", "n=bar", "-i", "x=${a} y=${b} name=$(n)"] + e("$1=a"), "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
+    ("iformat-columns-fail", ["-i", "x=${a} y=${b} name=$(n)"] + e("$1=$1"), "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
     # --- files and RAYPATH ---
     ("function-file", ["-f", "defs.cal"] + N + e("$1=hyp(3,4);$2=twice(sq,3);$3=scale;$4=local"), ""),
     ("function-file-missing", ["-f", "nosuch.cal"] + N + e("$1=1"), ""),

@@ -117,7 +117,7 @@ impl<'m> Interpreter<'m> {
 
     /// Start a record (rcalc.c `execute`): set `recno`/`outno`, expire `=` values and
     /// test `cond`. `false` when the record is filtered out.
-    pub fn begin_record(&mut self, record: &mut Record) -> Result<bool, Error> {
+    pub fn begin_record(&mut self, record: &mut dyn Input) -> Result<bool, Error> {
         self.nrecs += 1;
         if let Some(d) = self.recno {
             self.ev.set_value(d, self.nrecs as f64);
@@ -133,6 +133,24 @@ impl<'m> Interpreter<'m> {
         }
         self.nout += 1;
         Ok(true)
+    }
+
+    /// Set a variable for this record as rcalc's `varset(name, '=', v)` does for an
+    /// input format's fields. The module must already define it (with
+    /// [`Module::set_variable`]); returns false if it does not.
+    pub fn set_named(&mut self, name: &str, value: f64) -> bool {
+        let module = self.module;
+        match module
+            .lookup(name)
+            .and_then(|s| module.current_def(s))
+            .filter(|&d| !module.def(d).is_function())
+        {
+            Some(d) => {
+                self.ev.set_value(d, value);
+                true
+            }
+            None => false,
+        }
     }
 
     /// Evaluate an expression of this module (an `-o` format field) in the current

@@ -5,6 +5,7 @@
 //! own words on stderr; bad options exit 2.
 
 mod format;
+mod input_format;
 
 use super::USAGE_ERROR;
 use format::{Field, Value};
@@ -41,6 +42,8 @@ struct Options {
     files: Vec<String>,
     /// `-o format`: its fields and the compiled expression of each number field.
     record_format: Option<(Vec<Field>, Vec<Option<Expr>>)>,
+    /// `-i format`: the fields to match input against.
+    input_format: Option<Vec<Field>>,
     /// `-s name=value`.
     strings: HashMap<String, String>,
     /// rcalc's `-b` (blanks compare equal), on by default.
@@ -82,6 +85,7 @@ pub fn run(args: &[String]) -> ExitCode {
         out_limit: 0,
         files: Vec::new(),
         record_format: None,
+        input_format: None,
         strings: HashMap::new(),
         blanks_equal: true,
     };
@@ -145,10 +149,21 @@ pub fn run(args: &[String]) -> ExitCode {
                 },
                 None => return usage("-o needs a format"),
             },
-            "-i" => {
-                eprintln!("radc calc: input record formats (-i format) are not supported yet");
-                return ExitCode::from(USAGE_ERROR);
-            }
+            "-i" => match value() {
+                Some(spec) => match read_format_text(&spec).and_then(|t| {
+                    format::parse(&t).map_err(|e| {
+                        eprintln!("radc calc: {e} in input format");
+                        ExitCode::FAILURE
+                    })
+                }) {
+                    Ok(fields) => {
+                        o.itype = Format::Ascii;
+                        o.input_format = Some(fields);
+                    }
+                    Err(code) => return code,
+                },
+                None => return usage("-i needs a format"),
+            },
             "-in" | "-on" => {
                 let Some(n) = value().and_then(|v| v.parse::<u64>().ok()) else {
                     return usage(&format!("{a} needs a count"));
@@ -196,6 +211,12 @@ pub fn run(args: &[String]) -> ExitCode {
             module.set_variable(name, 0.0);
         }
     }
+    // An input format's number fields become variables, set per record.
+    for f in o.input_format.iter().flatten() {
+        if let Field::Number { expr: name, .. } = f {
+            module.set_variable(name, 0.0);
+        }
+    }
     if !o.noinput {
         module.optimize();
     }
@@ -213,6 +234,24 @@ pub fn run(args: &[String]) -> ExitCode {
 }
 
 /// rcalc.c `readfmt`: an inline format if it holds a `$`, else a file holding one.
+fn read_format_text(spec: &str) -> Result<String, ExitCode> {
+    if spec.contains('$') {
+        return Ok(spec.to_string());
+    }
+    match std::fs::read(spec) {
+        Ok(b) if !b.is_empty() => Ok(String::from_utf8_lossy(&b).into_owned()),
+        Ok(_) => {
+            eprintln!("radc calc: {spec}: empty file");
+            Err(ExitCode::FAILURE)
+        }
+        Err(e) => {
+            eprintln!("radc calc: {spec}: cannot open: {e}");
+            Err(ExitCode::FAILURE)
+        }
+    }
+}
+
+/// rcalc.c `readfmt`: an inline format if it holds a `$`, else a file holding one.
 /// Number fields are compiled now, against the definitions made so far.
 fn compile_format(
     module: &mut Module,
@@ -220,21 +259,7 @@ fn compile_format(
     diags: &mut Vec<Diagnostic>,
     spec: &str,
 ) -> Result<(Vec<Field>, Vec<Option<Expr>>), ExitCode> {
-    let text = if spec.contains('$') {
-        spec.to_string()
-    } else {
-        match std::fs::read(spec) {
-            Ok(b) if !b.is_empty() => String::from_utf8_lossy(&b).into_owned(),
-            Ok(_) => {
-                eprintln!("radc calc: {spec}: empty file");
-                return Err(ExitCode::FAILURE);
-            }
-            Err(e) => {
-                eprintln!("radc calc: {spec}: cannot open: {e}");
-                return Err(ExitCode::FAILURE);
-            }
-        }
-    };
+    let text = read_format_text(spec)?;
     let fields = format::parse(&text).map_err(|e| {
         eprintln!("radc calc: {e} in output format");
         ExitCode::FAILURE
@@ -318,7 +343,7 @@ fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
     let mut out = std::io::BufWriter::new(stdout.lock());
     let status = if o.noinput {
         interp.begin_single();
-        let r = produce(&mut interp, o, &mut radc_lang::cal::eval::NoInput);
+        let r = produce(&mut interp, o, &mut radc_lang::cal::eval::NoInput, None);
         emit(&mut out, &mut interp, o, r.map(Some))
     } else if o.files.is_empty() {
         let stdin = std::io::stdin();
@@ -365,6 +390,9 @@ fn run_stream<'m>(
     o: &'m Options,
     out: &mut dyn Write,
 ) -> Result<(), Stop> {
+    if let Some(fields) = &o.input_format {
+        return run_matched(input, fields, interp, o, out);
+    }
     let mut nrecs = 0u64;
     let mut nout = 0u64;
     let mut line = Vec::new();
@@ -387,7 +415,7 @@ fn run_stream<'m>(
         let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
         let mut record = Record::new(&text, sep);
         let result = match interp.begin_record(&mut record) {
-            Ok(true) => produce(interp, o, &mut record).map(Some),
+            Ok(true) => produce(interp, o, &mut record, None).map(Some),
             Ok(false) => Ok(None),
             Err(e) => Err(e),
         };
@@ -400,6 +428,42 @@ fn run_stream<'m>(
             return Err(Stop::Done);
         }
     }
+}
+
+/// Records found by an `-i` format (rcalc.c `getrec`); `$N` is then an error.
+fn run_matched<'m>(
+    input: &mut dyn BufRead,
+    fields: &[Field],
+    interp: &mut Interpreter<'m>,
+    o: &'m Options,
+    out: &mut dyn Write,
+) -> Result<(), Stop> {
+    let mut text = Vec::new();
+    if input.read_to_end(&mut text).is_err() {
+        return Err(Stop::Failed);
+    }
+    let mut matcher =
+        input_format::Matcher::new(fields.to_vec(), &text, o.blanks_equal, &o.strings);
+    let (mut nrecs, mut nout) = (0u64, 0u64);
+    while let Some(m) = matcher.next_record() {
+        nrecs += 1;
+        for (name, v) in &m.numbers {
+            interp.set_named(name, *v);
+        }
+        let mut no_columns = radc_lang::cal::eval::NoInput;
+        let result = match interp.begin_record(&mut no_columns) {
+            Ok(true) => produce(interp, o, &mut no_columns, Some(&m.strings)).map(Some),
+            Ok(false) => Ok(None),
+            Err(e) => Err(e),
+        };
+        let produced = matches!(result, Ok(Some(_)));
+        emit(out, interp, o, result)?;
+        nout += u64::from(produced);
+        if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
+            return Err(Stop::Done);
+        }
+    }
+    Ok(())
 }
 
 /// Binary input records are turned into blank-separated text with full precision, so
@@ -435,6 +499,7 @@ fn produce<'m>(
     interp: &mut Interpreter<'m>,
     o: &'m Options,
     input: &mut dyn radc_lang::cal::eval::Input,
+    record_strings: Option<&HashMap<String, String>>,
 ) -> Result<Produced, radc_jit::Error> {
     let Some((fields, exprs)) = &o.record_format else {
         return interp.outputs_for(input).map(Produced::Columns);
@@ -451,7 +516,10 @@ fn produce<'m>(
         values.push(match f {
             Field::Literal(_) => Value::Literal,
             Field::Number { .. } => Value::Number(*n),
-            Field::Text { name, .. } => match o.strings.get(name) {
+            Field::Text { name, .. } => match record_strings
+                .and_then(|r| r.get(name))
+                .or_else(|| o.strings.get(name))
+            {
                 Some(v) => Value::Text(v),
                 None => {
                     return Err(radc_jit::Error::UndefinedString(name.clone()));
