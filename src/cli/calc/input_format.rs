@@ -12,6 +12,8 @@ use std::collections::HashMap;
 pub struct Matched {
     pub numbers: Vec<(String, f64)>,
     pub strings: HashMap<String, String>,
+    /// The matched input, for `-P` to pass through when `cond` rejects it.
+    pub text: Vec<u8>,
 }
 
 pub struct Matcher<'a> {
@@ -21,6 +23,8 @@ pub struct Matcher<'a> {
     home: usize,
     blanks_equal: bool,
     presets: &'a HashMap<String, String>,
+    /// Input dropped while looking for a match, for `-p`/`-P` to pass through.
+    pub skipped: Vec<u8>,
 }
 
 /// rcalc.c `isnum`: characters that may continue a number.
@@ -56,6 +60,7 @@ impl<'a> Matcher<'a> {
             home: 0,
             blanks_equal,
             presets,
+            skipped: Vec::new(),
         }
     }
 
@@ -68,29 +73,38 @@ impl<'a> Matcher<'a> {
         while self.home < self.text.len() {
             if self.blanks_equal {
                 while self.at(self.home).is_some_and(is_blank) {
-                    self.home += 1;
+                    self.skip();
                 }
                 self.at(self.home)?;
             }
             let eatline = self.at(self.home) != Some(b'\n');
             let mut m = Matched::default();
             if let Some(end) = self.try_match(self.home, &mut m) {
+                m.text = self.text[self.home..end].to_vec();
                 self.home = end;
                 return Some(m);
             }
-            self.home += 1;
+            self.skip();
             if eatline {
                 loop {
                     match self.at(self.home) {
                         None => return None,
                         Some(b'\n') => break,
-                        Some(_) => self.home += 1,
+                        Some(_) => self.skip(),
                     }
                 }
-                self.home += 1;
+                self.skip();
             }
         }
         None
+    }
+
+    /// rcalc.c `skipinp`: drop one character (kept for passive mode).
+    fn skip(&mut self) {
+        if let Some(c) = self.at(self.home) {
+            self.skipped.push(c);
+        }
+        self.home += 1;
     }
 
     fn try_match(&self, mut pos: usize, m: &mut Matched) -> Option<usize> {

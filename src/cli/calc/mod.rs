@@ -48,6 +48,15 @@ struct Options {
     strings: HashMap<String, String>,
     /// rcalc's `-b` (blanks compare equal), on by default.
     blanks_equal: bool,
+    /// `-p`: pass unmatched input through; `-P`: also records `cond` rejects.
+    passive: Passive,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Passive {
+    Off,
+    Unmatched,
+    AlsoRejected,
 }
 
 /// One output record.
@@ -88,6 +97,7 @@ pub fn run(args: &[String]) -> ExitCode {
         input_format: None,
         strings: HashMap::new(),
         blanks_equal: true,
+        passive: Passive::Off,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -106,6 +116,8 @@ pub fn run(args: &[String]) -> ExitCode {
             "-w" => o.nowarn = !o.nowarn,
             "-u" => o.unbuffered = !o.unbuffered,
             "-b" => o.blanks_equal = !o.blanks_equal,
+            "-p" => o.passive = Passive::Unmatched,
+            "-P" => o.passive = Passive::AlsoRejected,
             "-l" => {}
             "-e" => match value() {
                 Some(expr) => add(&mut module, &mut sources, &mut diags, "-e".into(), expr),
@@ -201,6 +213,10 @@ pub fn run(args: &[String]) -> ExitCode {
         for w in &module.parse_warnings {
             eprintln!("{w}");
         }
+    }
+    if o.passive != Passive::Off && (o.input_format.is_none() || o.record_format.is_none()) {
+        eprintln!("radc calc: options -p and -P require -i and -o formats");
+        return ExitCode::FAILURE;
     }
     if o.noinput && !o.files.is_empty() {
         eprintln!("radc calc: file argument(s) incompatible with -n");
@@ -445,7 +461,14 @@ fn run_matched<'m>(
     let mut matcher =
         input_format::Matcher::new(fields.to_vec(), &text, o.blanks_equal, &o.strings);
     let (mut nrecs, mut nout) = (0u64, 0u64);
-    while let Some(m) = matcher.next_record() {
+    while let Some(m) = {
+        let next = matcher.next_record();
+        if o.passive != Passive::Off && out.write_all(&matcher.skipped).is_err() {
+            return Err(Stop::Failed);
+        }
+        matcher.skipped.clear();
+        next
+    } {
         nrecs += 1;
         for (name, v) in &m.numbers {
             interp.set_named(name, *v);
@@ -457,7 +480,11 @@ fn run_matched<'m>(
             Err(e) => Err(e),
         };
         let produced = matches!(result, Ok(Some(_)));
+        let rejected = matches!(result, Ok(None));
         emit(out, interp, o, result)?;
+        if rejected && o.passive == Passive::AlsoRejected && out.write_all(&m.text).is_err() {
+            return Err(Stop::Failed);
+        }
         nout += u64::from(produced);
         if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
             return Err(Stop::Done);
