@@ -142,6 +142,8 @@ CASES = [
     ("iformat-columns-fail", ["-i", "x=${a} y=${b} name=$(n)"] + e("$1=$1"), "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
     ("passive-unmatched", ["-p", "-i", "x=${a} y=${b} name=$(n)", "-o", "A=${a}"], "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
     ("passive-rejected", ["-P", "-i", "x=${a} y=${b} name=$(n)", "-o", "A=${a}"] + e("cond=a-2"), "junk line\nx=1.5 y=2 name=foo\n  x=3 y=-4e1 name=bar\nx=oops y=1 name=z\nx=5 y=6 name=q extra\n"),
+    ("ignore-eol", ["-l", "-i", "${x} ${y}"] + e("$1=x;$2=y"), "a 1\n2 b 3\n4\n5 junk\n"),
+    ("ignore-eol-after-iformat", ["-i", "${x} ${y}", "-l", "-o", "[${x+y}]"], "a 1\n2 b 3\n4\n5 junk\n"),
     # --- files and RAYPATH ---
     ("function-file", ["-f", "defs.cal"] + N + e("$1=hyp(3,4);$2=twice(sq,3);$3=scale;$4=local"), ""),
     ("function-file-missing", ["-f", "nosuch.cal"] + N + e("$1=1"), ""),

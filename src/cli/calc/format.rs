@@ -22,8 +22,8 @@ pub enum Field {
 }
 
 /// Split a format into fields, adding rcalc's final newline when the format does not
-/// end with one. `Err` carries rcalc's message.
-pub fn parse(spec: &str) -> Result<Vec<Field>, String> {
+/// end with one (unless `-l` came first). `Err` carries rcalc's message.
+pub fn parse(spec: &str, ignore_eol: bool) -> Result<Vec<Field>, String> {
     let chars: Vec<char> = spec.chars().collect();
     let mut fields = Vec::new();
     let mut i = 0;
@@ -68,7 +68,7 @@ pub fn parse(spec: &str) -> Result<Vec<Field>, String> {
             fields.push(Field::Literal(lit));
         }
     }
-    if !spec.ends_with('\n') {
+    if !ignore_eol && !spec.ends_with('\n') {
         fields.push(Field::Literal("\n".to_string()));
     }
     Ok(fields)
@@ -186,7 +186,7 @@ mod tests {
 
     #[test]
     fn fields_and_widths() {
-        let f = parse("x=${ a + 1 } $(name)$$").unwrap_or_default();
+        let f = parse("x=${ a + 1 } $(name)$$", false).unwrap_or_default();
         assert_eq!(
             f,
             vec![
@@ -204,7 +204,7 @@ mod tests {
                 Field::Literal("\n".into()),
             ]
         );
-        assert!(parse("$x").is_err());
+        assert!(parse("$x", false).is_err());
     }
 
     #[test]

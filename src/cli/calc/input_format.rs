@@ -25,15 +25,22 @@ pub struct Matcher<'a> {
     presets: &'a HashMap<String, String>,
     /// Input dropped while looking for a match, for `-p`/`-P` to pass through.
     pub skipped: Vec<u8>,
+    /// rcalc's `-l`: newlines are blanks like any other.
+    ignore_eol: bool,
+}
+
+/// rcalc.c `isblnk`: space and tab, or any white space under `-l`.
+fn blank(c: u8, ignore_eol: bool) -> bool {
+    if ignore_eol {
+        matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0b | 0x0c)
+    } else {
+        c == b' ' || c == b'\t'
+    }
 }
 
 /// rcalc.c `isnum`: characters that may continue a number.
 fn is_num(c: u8) -> bool {
     c.is_ascii_digit() || matches!(c, b'-' | b'.' | b'+' | b'e' | b'E')
-}
-
-fn is_blank(c: u8) -> bool {
-    c == b' ' || c == b'\t'
 }
 
 impl<'a> Matcher<'a> {
@@ -42,11 +49,14 @@ impl<'a> Matcher<'a> {
         mut fields: Vec<Field>,
         text: &'a [u8],
         blanks_equal: bool,
+        ignore_eol: bool,
         presets: &'a HashMap<String, String>,
     ) -> Self {
         if blanks_equal {
             if let Some(Field::Literal(l)) = fields.first_mut() {
-                let trimmed = l.trim_start_matches([' ', '\t']).to_string();
+                let trimmed = l
+                    .trim_start_matches(|c: char| c.is_ascii() && blank(c as u8, ignore_eol))
+                    .to_string();
                 if trimmed.is_empty() {
                     fields.remove(0);
                 } else {
@@ -61,7 +71,12 @@ impl<'a> Matcher<'a> {
             blanks_equal,
             presets,
             skipped: Vec::new(),
+            ignore_eol,
         }
+    }
+
+    fn is_blank(&self, c: u8) -> bool {
+        blank(c, self.ignore_eol)
     }
 
     fn at(&self, i: usize) -> Option<u8> {
@@ -72,12 +87,12 @@ impl<'a> Matcher<'a> {
     pub fn next_record(&mut self) -> Option<Matched> {
         while self.home < self.text.len() {
             if self.blanks_equal {
-                while self.at(self.home).is_some_and(is_blank) {
+                while self.at(self.home).is_some_and(|c| self.is_blank(c)) {
                     self.skip();
                 }
                 self.at(self.home)?;
             }
-            let eatline = self.at(self.home) != Some(b'\n');
+            let eatline = !self.ignore_eol && self.at(self.home) != Some(b'\n');
             let mut m = Matched::default();
             if let Some(end) = self.try_match(self.home, &mut m) {
                 m.text = self.text[self.home..end].to_vec();
@@ -125,14 +140,14 @@ impl<'a> Matcher<'a> {
     fn literal(&self, lit: &[u8], mut pos: usize) -> Option<usize> {
         let mut k = 0;
         while k < lit.len() {
-            if self.blanks_equal && is_blank(lit[k]) {
-                if !self.at(pos).is_some_and(is_blank) {
+            if self.blanks_equal && self.is_blank(lit[k]) {
+                if !self.at(pos).is_some_and(|c| self.is_blank(c)) {
                     return None;
                 }
-                while k < lit.len() && is_blank(lit[k]) {
+                while k < lit.len() && self.is_blank(lit[k]) {
                     k += 1;
                 }
-                while self.at(pos).is_some_and(is_blank) {
+                while self.at(pos).is_some_and(|c| self.is_blank(c)) {
                     pos += 1;
                 }
             } else if self.at(pos) == Some(lit[k]) {
@@ -149,8 +164,8 @@ impl<'a> Matcher<'a> {
     fn in_word(&self, c: u8, delim: Option<u8>, len: usize, width: usize) -> bool {
         match delim {
             Some(d) if self.blanks_equal => {
-                if is_blank(d) {
-                    !is_blank(c)
+                if self.is_blank(d) {
+                    !self.is_blank(c)
                 } else {
                     c != d
                 }
@@ -171,12 +186,12 @@ impl<'a> Matcher<'a> {
         let mut start = None;
         while word.len() < 127 {
             let Some(c) = self.at(pos) else { break };
-            if !((start.is_none() && is_blank(c)) || is_num(c))
+            if !((start.is_none() && self.is_blank(c)) || is_num(c))
                 || !self.in_word(c, delim, word.len(), width)
             {
                 break;
             }
-            if start.is_none() && !is_blank(c) {
+            if start.is_none() && !self.is_blank(c) {
                 start = Some(word.len());
             }
             word.push(c);
@@ -241,10 +256,10 @@ mod tests {
 
     #[test]
     fn numbers_between_literals() {
-        let fields = format::parse("x=${a} y=${b}\n").unwrap_or_default();
+        let fields = format::parse("x=${a} y=${b}\n", false).unwrap_or_default();
         let presets = HashMap::new();
         let text = b"junk\nx=1.5 y=2\nx=3 y=-4e1\n";
-        let mut m = Matcher::new(fields, text, true, &presets);
+        let mut m = Matcher::new(fields, text, true, false, &presets);
         let r1 = m.next_record().map(|r| r.numbers);
         assert_eq!(r1, Some(vec![("a".into(), 1.5), ("b".into(), 2.0)]));
         let r2 = m.next_record().map(|r| r.numbers);

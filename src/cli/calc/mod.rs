@@ -48,6 +48,8 @@ struct Options {
     strings: HashMap<String, String>,
     /// rcalc's `-b` (blanks compare equal), on by default.
     blanks_equal: bool,
+    /// `-l`: ignore ends of lines in record formats.
+    ignore_eol: bool,
     /// `-p`: pass unmatched input through; `-P`: also records `cond` rejects.
     passive: Passive,
 }
@@ -98,6 +100,7 @@ pub fn run(args: &[String]) -> ExitCode {
         strings: HashMap::new(),
         blanks_equal: true,
         passive: Passive::Off,
+        ignore_eol: false,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -118,7 +121,7 @@ pub fn run(args: &[String]) -> ExitCode {
             "-b" => o.blanks_equal = !o.blanks_equal,
             "-p" => o.passive = Passive::Unmatched,
             "-P" => o.passive = Passive::AlsoRejected,
-            "-l" => {}
+            "-l" => o.ignore_eol = !o.ignore_eol,
             "-e" => match value() {
                 Some(expr) => add(&mut module, &mut sources, &mut diags, "-e".into(), expr),
                 None => return usage("-e needs an expression"),
@@ -152,18 +155,21 @@ pub fn run(args: &[String]) -> ExitCode {
                 None => return usage("-s needs svar=sval"),
             },
             "-o" => match value() {
-                Some(spec) => match compile_format(&mut module, &mut sources, &mut diags, &spec) {
-                    Ok(f) => {
-                        o.otype = Format::Ascii;
-                        o.record_format = Some(f);
+                Some(spec) => {
+                    match compile_format(&mut module, &mut sources, &mut diags, &spec, o.ignore_eol)
+                    {
+                        Ok(f) => {
+                            o.otype = Format::Ascii;
+                            o.record_format = Some(f);
+                        }
+                        Err(code) => return code,
                     }
-                    Err(code) => return code,
-                },
+                }
                 None => return usage("-o needs a format"),
             },
             "-i" => match value() {
                 Some(spec) => match read_format_text(&spec).and_then(|t| {
-                    format::parse(&t).map_err(|e| {
+                    format::parse(&t, o.ignore_eol).map_err(|e| {
                         eprintln!("radc calc: {e} in input format");
                         ExitCode::FAILURE
                     })
@@ -274,9 +280,10 @@ fn compile_format(
     sources: &mut Sources,
     diags: &mut Vec<Diagnostic>,
     spec: &str,
+    ignore_eol: bool,
 ) -> Result<(Vec<Field>, Vec<Option<Expr>>), ExitCode> {
     let text = read_format_text(spec)?;
-    let fields = format::parse(&text).map_err(|e| {
+    let fields = format::parse(&text, ignore_eol).map_err(|e| {
         eprintln!("radc calc: {e} in output format");
         ExitCode::FAILURE
     })?;
@@ -458,8 +465,13 @@ fn run_matched<'m>(
     if input.read_to_end(&mut text).is_err() {
         return Err(Stop::Failed);
     }
-    let mut matcher =
-        input_format::Matcher::new(fields.to_vec(), &text, o.blanks_equal, &o.strings);
+    let mut matcher = input_format::Matcher::new(
+        fields.to_vec(),
+        &text,
+        o.blanks_equal,
+        o.ignore_eol,
+        &o.strings,
+    );
     let (mut nrecs, mut nout) = (0u64, 0u64);
     while let Some(m) = {
         let next = matcher.next_record();
