@@ -42,6 +42,13 @@ pub fn check_with_entries(
         diags: &mut diags,
     };
     checker.run(entries);
+    // A call with too few arguments that folding also tripped on is one problem.
+    let arity: HashSet<(u32, u32)> = diags
+        .iter()
+        .filter(|d| d.code == diagnostic::E0602)
+        .map(|d| (d.span.start, d.span.end))
+        .collect();
+    diags.retain(|d| d.code != diagnostic::E0701 || !arity.contains(&(d.span.start, d.span.end)));
     diags.sort_by_key(|d| (d.span.start, d.span.end));
     diags
 }
@@ -111,7 +118,9 @@ impl Checker<'_> {
             )
         };
         let known = self.m.known_names();
-        match suggest(name, known.iter().copied().filter(|k| k != name)) {
+        match suggest(name, known.iter().copied().filter(|k| k != name))
+            .or_else(|| transposed(name, &known))
+        {
             Some(s) => d = d.with_hint(format!("did you mean '{s}'?")),
             None => {
                 d = d.with_hint(
@@ -214,9 +223,10 @@ impl Checker<'_> {
                 diagnostic::W0605,
                 span,
                 format!(
-                    "'{name}' takes {max} argument{}; the other {} are ignored",
+                    "'{name}' takes {max} argument{}; {} extra {} ignored",
                     if max == 1 { "" } else { "s" },
-                    args.len() - max
+                    args.len() - max,
+                    if args.len() - max == 1 { "is" } else { "are" }
                 ),
             ));
         }
@@ -356,6 +366,23 @@ impl Checker<'_> {
             }
         }
     }
+}
+
+/// A known name that is `name` with two adjacent characters swapped (`scael` for
+/// `scale`): the typo the edit-distance limit of `suggest` misses in short names.
+fn transposed<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
+    let n: Vec<char> = name.chars().collect();
+    known.iter().copied().find(|k| {
+        let k: Vec<char> = k.chars().collect();
+        if k.len() != n.len() {
+            return false;
+        }
+        let diff: Vec<usize> = (0..n.len()).filter(|&i| n[i] != k[i]).collect();
+        diff.len() == 2
+            && diff[1] == diff[0] + 1
+            && n[diff[0]] == k[diff[1]]
+            && n[diff[1]] == k[diff[0]]
+    })
 }
 
 /// The highest parameter number a function body uses.
