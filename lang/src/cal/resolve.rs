@@ -216,6 +216,26 @@ impl Module {
         diags
     }
 
+    /// Load a function file named by a primitive as the renderer does (func.c
+    /// `getfunc`): its definitions live in a context named after the file (without a
+    /// `.cal` suffix); `.` means no file and the global context. The primitive's
+    /// expression arguments are then added with [`Module::add_expression`] in that
+    /// context. Call [`Module::set_context`] with `""` to return to the global one.
+    pub fn load_function_file(&mut self, file: FileId, name: &str, text: &str) -> Vec<Diagnostic> {
+        if name == "." {
+            self.set_context("");
+            return Vec::new();
+        }
+        let lower = name.to_ascii_lowercase();
+        let ctx = if lower.len() > 4 && lower.ends_with(".cal") {
+            &name[..name.len() - 4]
+        } else {
+            name
+        };
+        self.set_context(ctx);
+        self.add_source(file, text)
+    }
+
     /// Parse and lower one expression in the current definitions (an rcalc `-o`
     /// format field: calexpr.c `eparse`, folded but never flattened).
     pub fn add_expression(&mut self, file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic>> {
