@@ -5,9 +5,13 @@
 //! the outside world, so both see exactly the same diagnostics.
 
 pub mod cal;
+pub mod datafile;
+pub mod db;
 pub mod diagnostic;
+pub mod scene;
 pub mod schema;
 pub mod source;
+pub mod transform;
 
 pub use diagnostic::{Code, Diagnostic, Label, Severity};
 pub use source::{FileId, LineIndex, Span};

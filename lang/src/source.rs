@@ -129,3 +129,64 @@ mod tests {
         assert_eq!(idx.line_utf16(text, 4), (0, 2));
     }
 }
+
+/// Turns file bytes into text without moving any byte offset: invalid UTF-8 bytes
+/// become `?`, and invalid bytes and NULs are each reported once at their first
+/// occurrence. Radiance reads bytes, so an old Latin-1 comment is no reason to reject
+/// a scene; a NUL ends the C string of the word it sits in (see `lexer::unquote`).
+pub fn decode(file: FileId, bytes: &[u8]) -> (String, Vec<crate::Diagnostic>) {
+    use crate::diagnostic::{self as codes, Diagnostic};
+    let mut diags = Vec::new();
+    let mut text = String::with_capacity(bytes.len());
+    let mut rest = bytes;
+    let mut offset = 0;
+    let mut first_invalid = None;
+    loop {
+        match std::str::from_utf8(rest) {
+            Ok(s) => {
+                text.push_str(s);
+                break;
+            }
+            Err(e) => {
+                let good = e.valid_up_to();
+                text.push_str(std::str::from_utf8(&rest[..good]).unwrap_or_default());
+                let bad = e.error_len().unwrap_or(rest.len() - good);
+                first_invalid.get_or_insert(offset + good);
+                text.extend(std::iter::repeat_n('?', bad));
+                offset += good + bad;
+                rest = &rest[good + bad..];
+            }
+        }
+    }
+    if let Some(at) = first_invalid {
+        diags.push(
+            Diagnostic::new(
+                codes::W0101,
+                Span::new(file, at..at + 1),
+                "the file is not valid UTF-8; invalid bytes are read as '?'",
+            )
+            .with_hint("save the file as UTF-8 (names with non-ASCII bytes may not match)"),
+        );
+    }
+    if let Some(at) = text.find('\0') {
+        diags.push(
+            Diagnostic::new(codes::W0103, Span::new(file, at..at + 1), "the file contains a NUL byte")
+                .with_hint("Radiance stops reading a word at a NUL and skips the rest of it; remove it (is this a binary file?)"),
+        );
+    }
+    (text, diags)
+}
+
+#[cfg(test)]
+mod decode_tests {
+    use super::*;
+
+    #[test]
+    fn keeps_byte_offsets() {
+        let (text, diags) = decode(FileId(0), b"ab\xff\xfecd\0e");
+        assert_eq!(text, "ab??cd\0e");
+        let ids: Vec<_> = diags.iter().map(|d| d.code.id).collect();
+        assert_eq!(ids, vec!["W0101", "W0103"]);
+        assert_eq!(diags[0].span.range(), 2..3);
+    }
+}

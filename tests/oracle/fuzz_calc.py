@@ -18,7 +18,8 @@ R = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath
 random.seed(int(sys.argv[1]) if len(sys.argv) > 1 else 1)
 FUNCS1 = ["sin","cos","tan","sqrt","exp","log","log10","floor","ceil","rand","asin","acos","atan"]
 def num():
-    return random.choice(["0","1","2","3",".5","0.1","1e3","2.5","7","1e-3","1e20","10","-1","3.25"])
+    return random.choice(["0","1","2","3",".5","0.1","1e3","2.5","7","1e-3","1e20","10","-1","3.25",
+                          "1e308","1e-310","0.0"])
 def atom(d):
     r = random.random()
     if r < 0.25: return num()
@@ -68,7 +69,9 @@ for i in range(int(sys.argv[2]) if len(sys.argv) > 2 else 200):
     prog = program()
     nflag = random.random() < 0.3
     args = (["-n"] if nflag else []) + ["-e", prog.replace("$1","1.5").replace("$2","-2") if nflag else prog]
-    inp = "1.5 -2\n0 0\n3 0.25\n-7 1e10\n"
+    vals = ["1.5", "-2", "0", "-0", "3", "0.25", "-7", "1e10", "nan", "-nan", "inf", "1e308",
+            "-1e-320", "2.5e-5", "x"]
+    inp = "".join("%s %s\n" % (random.choice(vals), random.choice(vals)) for _ in range(4))
     a = subprocess.run(["rcalc"] + args, input=inp.encode(), capture_output=True, timeout=20)
     b = subprocess.run([R, "calc"] + args, input=inp.encode(), capture_output=True, timeout=20)
     if a.stdout != b.stdout or (a.returncode == 0) != (b.returncode == 0):

@@ -118,6 +118,7 @@ CASES = [
     ("gap-columns", e("$2=$1;$5=$1*2"), "1\n"),
     ("output-format", N + e("$1=1e9;$2=123456789;$3=1234567890;$4=1e-5;$5=0.0001;$6=1/3;$7=2/3;$8=-2.5e-300;$9=999999999.5;$10=1e100;$11=-0"), ""),
     ("cond", e("cond=$1-2;$1=$1;$2=recno;$3=outno"), "1\n2\n3\n4\n"),
+    ("cond-nan-rejects", e("cond=sqrt($1);$1=$1"), "4\n-1\nnan\n"),
     ("cond-constant-fails", e("cond:1;$1=$1"), "1\n"),
     ("in-zero", e("$1=in(0)"), "a b c\n\n1\n"),
     ("record-limit", ["-in", "2"] + e("$1=$1"), "1\n2\n3\n"),
@@ -146,6 +147,7 @@ CASES = [
     ("ignore-eol-after-iformat", ["-i", "${x} ${y}", "-l", "-o", "[${x+y}]"], "a 1\n2 b 3\n4\n5 junk\n"),
     # --- files and RAYPATH ---
     ("function-file", ["-f", "defs.cal"] + N + e("$1=hyp(3,4);$2=twice(sq,3);$3=scale;$4=local"), ""),
+    ("function-file-dot", ["-f", "."] + N + e("$1=1"), ""),
     ("function-file-missing", ["-f", "nosuch.cal"] + N + e("$1=1"), ""),
     ("order-of-e-and-f", ["-e", "scale=1", "-f", "defs.cal"] + N + e("$1=scale"), ""),
 ]

@@ -69,13 +69,12 @@ impl<'m> Interpreter<'m> {
                 .current_def(s)
                 .is_some_and(|d| !module.def(d).is_function())
         });
-        if let Some(s) = cond {
-            if module
+        if let Some(s) = cond
+            && module
                 .current_def(s)
                 .is_some_and(|d| module.def(d).kind == DefKind::Constant)
-            {
-                return Err(Error::ConstantCond);
-            }
+        {
+            return Err(Error::ConstantCond);
         }
         let var = |name: &str| {
             module
@@ -126,10 +125,11 @@ impl<'m> Interpreter<'m> {
             self.ev.set_value(d, (self.nout + 1) as f64);
         }
         self.ev.next_record();
-        if let Some(c) = self.cond {
-            if self.ev.variable(c, record)? <= 0.0 {
-                return Ok(false);
-            }
+        // `varvalue("cond") > 0.0` accepts: a NaN cond rejects the record.
+        if let Some(c) = self.cond
+            && self.ev.variable(c, record)?.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+        {
+            return Ok(false);
         }
         self.nout += 1;
         Ok(true)

@@ -52,16 +52,14 @@ impl<'a> Matcher<'a> {
         ignore_eol: bool,
         presets: &'a HashMap<String, String>,
     ) -> Self {
-        if blanks_equal {
-            if let Some(Field::Literal(l)) = fields.first_mut() {
-                let trimmed = l
-                    .trim_start_matches(|c: char| c.is_ascii() && blank(c as u8, ignore_eol))
-                    .to_string();
-                if trimmed.is_empty() {
-                    fields.remove(0);
-                } else {
-                    *l = trimmed;
-                }
+        if blanks_equal && let Some(Field::Literal(l)) = fields.first_mut() {
+            let trimmed = l
+                .trim_start_matches(|c: char| c.is_ascii() && blank(c as u8, ignore_eol))
+                .to_string();
+            if trimmed.is_empty() {
+                fields.remove(0);
+            } else {
+                *l = trimmed;
             }
         }
         Matcher {

@@ -128,6 +128,7 @@ pub fn run(args: &[String]) -> ExitCode {
             },
             "-f" => match value() {
                 Some(name) => match find_on_raypath(&name) {
+                    Some(path) if path.is_dir() => {}
                     Some(path) => match std::fs::read(&path) {
                         Ok(bytes) => {
                             let text = String::from_utf8_lossy(&bytes).into_owned();
@@ -342,16 +343,17 @@ fn usage(why: &str) -> ExitCode {
 
 /// rcalc's `getpath` with `getrlibpath`: absolute and `./` names as given, others
 /// searched in each RAYPATH directory (the current one if RAYPATH is unset).
+/// A directory is found too, as `getpath` does: `-f .` then reads nothing.
 fn find_on_raypath(name: &str) -> Option<PathBuf> {
     let p = Path::new(name);
-    if p.is_absolute() || name.starts_with("./") || name.starts_with("../") {
-        return p.is_file().then(|| p.to_path_buf());
+    if p.is_absolute() || name.starts_with("./") || name.starts_with("../") || name == "." {
+        return p.exists().then(|| p.to_path_buf());
     }
     let raypath = std::env::var("RAYPATH").unwrap_or_else(|_| ".".into());
     raypath
         .split(':')
         .map(|d| Path::new(if d.is_empty() { "." } else { d }).join(name))
-        .find(|c| c.is_file())
+        .find(|c| c.exists())
 }
 
 fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {

@@ -1,0 +1,198 @@
+//! Which modifier each name in a file refers to, from the syntax tree alone: the
+//! language server's go-to-definition, references, hover and completion read this.
+//!
+//! Radiance binds a modifier name to the most recent earlier definition
+//! (`modobject.c` looks names up as it reads), so a later redefinition does not relink
+//! earlier uses. This works on any syntax tree, including ones with unknown types and
+//! errors, which is what an editor has while someone types.
+
+use std::collections::HashMap;
+
+use super::syntax::{Item, SceneFile, Word};
+use crate::schema::{self, Category, StringKind};
+use crate::source::Span;
+
+/// A named primitive or alias.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Definition {
+    pub name: String,
+    /// The name word.
+    pub name_span: Span,
+    /// The whole statement.
+    pub span: Span,
+    /// The type keyword as written (`alias` for aliases).
+    pub type_name: String,
+    /// Whether later primitives may use it as a modifier (surfaces cannot; unknown
+    /// types are given the benefit of the doubt).
+    pub is_modifier: bool,
+}
+
+/// A word naming a modifier, resolved to a definition index when one precedes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reference {
+    pub name: String,
+    pub span: Span,
+    pub target: Option<usize>,
+}
+
+/// Every definition and modifier reference in one file, in source order.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct ModifierScope {
+    pub definitions: Vec<Definition>,
+    pub references: Vec<Reference>,
+}
+
+impl ModifierScope {
+    pub fn new(file: &SceneFile) -> Self {
+        let mut scope = ModifierScope::default();
+        let mut bound: HashMap<String, usize> = HashMap::new();
+        for item in &file.items {
+            match item {
+                Item::Primitive(p) => {
+                    scope.reference(&p.modifier, &bound);
+                    let ty = schema::lookup(&p.kind.text);
+                    if let Some(ty) = ty {
+                        for (i, w) in p.strings.items.iter().enumerate() {
+                            let kind = ty.strings.arg_at(i).map(|(a, _)| a.kind);
+                            if kind == Some(StringKind::Modifier) {
+                                scope.reference(w, &bound);
+                            }
+                        }
+                    }
+                    let is_modifier = ty.is_none_or(|t| t.category != Category::Surface);
+                    scope.define(&p.name, p.span, &p.kind.text, is_modifier, &mut bound);
+                }
+                Item::Alias(a) => {
+                    scope.reference(&a.modifier, &bound);
+                    scope.reference(&a.target, &bound);
+                    scope.define(&a.name, a.span, "alias", true, &mut bound);
+                }
+                Item::Command(_) | Item::Comment(_) | Item::Error(_) => {}
+            }
+        }
+        scope
+    }
+
+    fn reference(&mut self, word: &Word, bound: &HashMap<String, usize>) {
+        if matches!(word.text.as_str(), "void" | "inherit") {
+            return;
+        }
+        self.references.push(Reference {
+            name: word.text.clone(),
+            span: word.span,
+            target: bound.get(&word.text).copied(),
+        });
+    }
+
+    fn define(
+        &mut self,
+        name: &Word,
+        span: Span,
+        type_name: &str,
+        is_modifier: bool,
+        bound: &mut HashMap<String, usize>,
+    ) {
+        let index = self.definitions.len();
+        self.definitions.push(Definition {
+            name: name.text.clone(),
+            name_span: name.span,
+            span,
+            type_name: type_name.to_string(),
+            is_modifier,
+        });
+        if is_modifier {
+            bound.insert(name.text.clone(), index);
+        }
+    }
+
+    /// The definition named or referred to by the word at byte `offset`.
+    pub fn definition_at(&self, offset: usize) -> Option<&Definition> {
+        self.symbol_at(offset).map(|(_, d)| d)
+    }
+
+    /// The word at byte `offset` (its span) when it names or refers to a definition.
+    pub fn symbol_at(&self, offset: usize) -> Option<(Span, &Definition)> {
+        let hit = |s: &Span| s.start as usize <= offset && offset <= s.end as usize;
+        if let Some(d) = self.definitions.iter().find(|d| hit(&d.name_span)) {
+            return Some((d.name_span, d));
+        }
+        let r = self.references.iter().find(|r| hit(&r.span))?;
+        Some((r.span, self.definitions.get(r.target?)?))
+    }
+
+    /// The spans of every word naming `def` (its own name first), for references
+    /// and highlighting.
+    pub fn uses_of(&self, def: &Definition) -> Vec<Span> {
+        let index = self.definitions.iter().position(|d| d == def);
+        let mut spans = vec![def.name_span];
+        spans.extend(
+            self.references
+                .iter()
+                .filter(|r| r.target.is_some() && r.target == index)
+                .map(|r| r.span),
+        );
+        spans
+    }
+
+    /// The modifiers a primitive starting at `offset` could use: the most recent
+    /// definition of each name that ends before `offset`, in source order.
+    pub fn visible_at(&self, offset: usize) -> Vec<&Definition> {
+        let mut latest: HashMap<&str, usize> = HashMap::new();
+        for (i, d) in self.definitions.iter().enumerate() {
+            if d.is_modifier && (d.span.end as usize) <= offset {
+                latest.insert(&d.name, i);
+            }
+        }
+        let mut visible: Vec<usize> = latest.into_values().collect();
+        visible.sort_unstable();
+        visible
+            .iter()
+            .filter_map(|&i| self.definitions.get(i))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::source::FileId;
+
+    const TEXT: &str = "void plastic red\n0\n0\n5 .5 .1 .1 0 0\n\
+                        red sphere ball\n0\n0\n4 0 0 0 1\n\
+                        void plastic red\n0\n0\n5 .1 .1 .5 0 0\n\
+                        red alias paint red\n\
+                        paint sphere ball2\n0\n0\n4 0 0 3 1\n";
+
+    fn scope() -> ModifierScope {
+        ModifierScope::new(&crate::scene::parse(FileId(0), TEXT).0)
+    }
+
+    #[test]
+    fn uses_bind_to_the_most_recent_earlier_definition() {
+        let s = scope();
+        let first_use = TEXT.find("red sphere").unwrap_or_default();
+        let def = s.definition_at(first_use).map(|d| d.span.start);
+        assert_eq!(def, Some(0));
+        let alias_target = TEXT.rfind("red\npaint").unwrap_or_default();
+        let second = TEXT.rfind("void plastic red").unwrap_or_default();
+        assert_eq!(
+            s.definition_at(alias_target).map(|d| d.span.start as usize),
+            Some(second)
+        );
+    }
+
+    #[test]
+    fn uses_and_visibility() {
+        let s = scope();
+        let second = &s.definitions[2];
+        // name, the alias's modifier and the alias's target.
+        assert_eq!(s.uses_of(second).len(), 3);
+        let names: Vec<&str> = s
+            .visible_at(TEXT.len())
+            .iter()
+            .map(|d| d.name.as_str())
+            .collect();
+        assert_eq!(names, ["red", "paint"]);
+        assert!(s.visible_at(0).is_empty());
+    }
+}

@@ -1,0 +1,235 @@
+//! The `LanguageServer` implementation: decodes each request, runs its handler against
+//! the session, and publishes diagnostics after every edit.
+//!
+//! tower-lsp-server runs handlers concurrently, so the session sits behind one mutex
+//! that no handler holds across an `await`: every handler runs to completion on the
+//! state it saw. Text changes carry versions and the newest wins. Diagnostics are
+//! computed and sent under a second, async lock, each time from the current text, so
+//! the last diagnostics a client receives are always those of its latest text. A
+//! handler that panics (a bug) answers "nothing" instead of taking the server down.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use tower_lsp_server::jsonrpc::Result;
+use tower_lsp_server::ls_types::*;
+use tower_lsp_server::{Client, LanguageServer};
+
+use crate::config::Config;
+use crate::document::Document;
+use crate::handlers;
+use crate::session::Session;
+
+pub struct Backend {
+    client: Client,
+    session: Mutex<Session>,
+    publishing: tokio::sync::Mutex<()>,
+}
+
+impl Backend {
+    pub fn new(client: Client) -> Self {
+        Backend {
+            client,
+            session: Mutex::new(Session::default()),
+            publishing: tokio::sync::Mutex::new(()),
+        }
+    }
+
+    fn session(&self) -> MutexGuard<'_, Session> {
+        self.session.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Runs a handler on one open document; `None` if it is not open or the handler
+    /// panicked.
+    fn read<T>(&self, uri: &Uri, f: impl FnOnce(&Document<'_>, &Config) -> Option<T>) -> Option<T> {
+        let session = self.session();
+        let doc = session.document(uri)?;
+        catch_unwind(AssertUnwindSafe(|| f(&doc, &session.config)))
+            .ok()
+            .flatten()
+    }
+
+    fn write(&self, f: impl FnOnce(&mut Session)) {
+        let mut session = self.session();
+        let _ = catch_unwind(AssertUnwindSafe(|| f(&mut session)));
+    }
+
+    async fn publish(&self, uri: Uri) {
+        let _order = self.publishing.lock().await;
+        let found = self.read(&uri, |doc, _| Some(crate::diagnostics::for_document(doc)));
+        let version = self.session().version(&uri);
+        if let Some(diagnostics) = found {
+            self.client
+                .publish_diagnostics(uri, diagnostics, version)
+                .await;
+        }
+    }
+}
+
+fn capabilities() -> ServerCapabilities {
+    ServerCapabilities {
+        text_document_sync: Some(TextDocumentSyncCapability::Options(
+            TextDocumentSyncOptions {
+                open_close: Some(true),
+                change: Some(TextDocumentSyncKind::FULL),
+                save: Some(TextDocumentSyncSaveOptions::Supported(true)),
+                ..TextDocumentSyncOptions::default()
+            },
+        )),
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        completion_provider: Some(CompletionOptions::default()),
+        inlay_hint_provider: Some(OneOf::Left(true)),
+        document_formatting_provider: Some(OneOf::Left(true)),
+        color_provider: Some(ColorProviderCapability::Simple(true)),
+        ..ServerCapabilities::default()
+    }
+}
+
+impl LanguageServer for Backend {
+    async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        if let Some(options) = &params.initialization_options {
+            self.write(|s| s.configure(options));
+        }
+        Ok(InitializeResult {
+            capabilities: capabilities(),
+            server_info: Some(ServerInfo {
+                name: "radc".into(),
+                version: Some(env!("CARGO_PKG_VERSION").into()),
+            }),
+            ..InitializeResult::default()
+        })
+    }
+
+    async fn shutdown(&self) -> Result<()> {
+        Ok(())
+    }
+
+    async fn did_open(&self, params: DidOpenTextDocumentParams) {
+        let d = params.text_document;
+        self.write(|s| s.open(d.uri.clone(), d.version, d.text));
+        self.publish(d.uri).await;
+    }
+
+    async fn did_change(&self, params: DidChangeTextDocumentParams) {
+        let uri = params.text_document.uri;
+        // Full-text sync: the last change holds the whole new text.
+        if let Some(change) = params.content_changes.into_iter().last() {
+            let version = params.text_document.version;
+            self.write(|s| s.change(&uri, version, change.text));
+        }
+        self.publish(uri).await;
+    }
+
+    async fn did_save(&self, params: DidSaveTextDocumentParams) {
+        // A save may create or remove a file another scene names.
+        self.write(Session::file_system_changed);
+        let uris = self.session().open_uris();
+        for uri in uris {
+            self.publish(uri).await;
+        }
+        let _ = params;
+    }
+
+    async fn did_close(&self, params: DidCloseTextDocumentParams) {
+        let uri = params.text_document.uri;
+        self.write(|s| s.close(&uri));
+        self.client.publish_diagnostics(uri, Vec::new(), None).await;
+    }
+
+    async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
+        self.write(|s| s.configure(&params.settings));
+        let uris = self.session().open_uris();
+        for uri in uris {
+            self.publish(uri).await;
+        }
+    }
+
+    async fn did_change_watched_files(&self, _: DidChangeWatchedFilesParams) {
+        self.write(Session::file_system_changed);
+        let uris = self.session().open_uris();
+        for uri in uris {
+            self.publish(uri).await;
+        }
+    }
+
+    async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
+        let p = params.text_document_position_params;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::hover::hover(doc, p.position)
+        }))
+    }
+
+    async fn goto_definition(
+        &self,
+        params: GotoDefinitionParams,
+    ) -> Result<Option<GotoDefinitionResponse>> {
+        let p = params.text_document_position_params;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::definition::definition(doc, p.position)
+        }))
+    }
+
+    async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
+        let p = params.text_document_position;
+        let declaration = params.context.include_declaration;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::references::references(doc, p.position, declaration)
+        }))
+    }
+
+    async fn document_symbol(
+        &self,
+        params: DocumentSymbolParams,
+    ) -> Result<Option<DocumentSymbolResponse>> {
+        Ok(self.read(&params.text_document.uri, |doc, _| {
+            Some(DocumentSymbolResponse::Nested(handlers::symbols::symbols(
+                doc,
+            )))
+        }))
+    }
+
+    async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
+        let p = params.text_document_position;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::completion::completion(doc, p.position).map(CompletionResponse::Array)
+        }))
+    }
+
+    async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
+        Ok(self.read(&params.text_document.uri, |doc, config| {
+            config
+                .inlay_hints
+                .then(|| handlers::inlay_hints::inlay_hints(doc, params.range))
+        }))
+    }
+
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        Ok(self.read(&params.text_document.uri, |doc, _| {
+            handlers::formatting::formatting(doc)
+        }))
+    }
+
+    async fn document_color(&self, params: DocumentColorParams) -> Result<Vec<ColorInformation>> {
+        let found = self.read(&params.text_document.uri, |doc, _| {
+            Some(handlers::colors::document_colors(doc))
+        });
+        Ok(found.unwrap_or_default())
+    }
+
+    async fn color_presentation(
+        &self,
+        params: ColorPresentationParams,
+    ) -> Result<Vec<ColorPresentation>> {
+        let found = self.read(&params.text_document.uri, |doc, _| {
+            Some(handlers::colors::presentations(
+                doc,
+                params.color,
+                params.range,
+            ))
+        });
+        Ok(found.unwrap_or_default())
+    }
+}

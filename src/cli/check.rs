@@ -1,0 +1,323 @@
+//! `radc check`: lint scene files (and, with the calcomp front end, `.cal` files) for CI
+//! and for people. Exit 0 when clean (warnings allowed), 1 on errors (or on warnings
+//! with `--deny warnings`), 2 on usage errors.
+//!
+//! Files named on the command line are read in order as one scene, as oconv reads
+//! them (so `radc check materials.mat room.rad` resolves the room's materials). Each
+//! `.rad` file found under a directory argument is checked as a scene of its own.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use radc_lang::scene::{self, FileLookup, LowerInput};
+use radc_lang::schema::FileKind;
+use radc_lang::{Diagnostic, FileId, Severity};
+
+use super::USAGE_ERROR;
+use super::expand::{Commands, PendingSources};
+use super::report::{self, Format, Sources};
+
+const USAGE: &str =
+    "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
+
+struct Options {
+    format: Format,
+    deny_warnings: bool,
+    quiet: bool,
+    allow_commands: bool,
+    paths: Vec<PathBuf>,
+}
+
+fn parse_args(args: &[String]) -> Result<Options, String> {
+    let mut o = Options {
+        format: Format::Human,
+        deny_warnings: false,
+        quiet: false,
+        allow_commands: false,
+        paths: Vec::new(),
+    };
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--format" => match it.next().map(String::as_str) {
+                Some("json") => o.format = Format::Json,
+                Some("human") => o.format = Format::Human,
+                other => return Err(format!("--format takes 'human' or 'json', not {other:?}")),
+            },
+            "--format=json" => o.format = Format::Json,
+            "--format=human" => o.format = Format::Human,
+            "--deny" => match it.next().map(String::as_str) {
+                Some("warnings") => o.deny_warnings = true,
+                other => return Err(format!("--deny takes 'warnings', not {other:?}")),
+            },
+            "--deny=warnings" | "-W" => o.deny_warnings = true,
+            "-q" | "--quiet" => o.quiet = true,
+            "--allow-commands" => o.allow_commands = true,
+            "-h" | "--help" => return Err(String::new()),
+            s if s.starts_with('-') && s != "-" => return Err(format!("unknown option '{s}'")),
+            path => o.paths.push(PathBuf::from(path)),
+        }
+    }
+    if o.paths.is_empty() {
+        return Err("no files to check".into());
+    }
+    Ok(o)
+}
+
+pub fn run(args: &[String]) -> ExitCode {
+    let opts = match parse_args(args) {
+        Ok(o) => o,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("radc check: {e}");
+            }
+            eprintln!("{USAGE}");
+            return ExitCode::from(USAGE_ERROR);
+        }
+    };
+    let mut sources = Sources::default();
+    let mut diags = Vec::new();
+    let mut scene_files = Vec::new();
+    for path in &opts.paths {
+        if path.is_dir() {
+            let mut found = Vec::new();
+            collect_scenes(path, &mut found);
+            found.sort();
+            for f in found {
+                if is_cal(&f) {
+                    check_cal(&f, &mut sources, &mut diags);
+                } else {
+                    check_scene(&[f], opts.allow_commands, &mut sources, &mut diags);
+                }
+            }
+        } else if is_cal(path) {
+            check_cal(path, &mut sources, &mut diags);
+        } else {
+            scene_files.push(path.clone());
+        }
+    }
+    if !scene_files.is_empty() {
+        check_scene(&scene_files, opts.allow_commands, &mut sources, &mut diags);
+    }
+    diags.sort_by_key(|d| (d.span.file, d.span.start));
+    report::print(&diags, &sources, opts.format);
+    let errors = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
+    let warnings = diags.len() - errors;
+    if opts.format == Format::Human && !opts.quiet {
+        // A closed pipe (`radc check ... | head`) is not an error worth a panic.
+        let _ = writeln!(
+            std::io::stdout(),
+            "{} error{}, {} warning{}",
+            errors,
+            if errors == 1 { "" } else { "s" },
+            warnings,
+            if warnings == 1 { "" } else { "s" }
+        );
+    }
+    if errors > 0 || (opts.deny_warnings && warnings > 0) {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            collect_scenes(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rad" || x == "cal") {
+            out.push(p);
+        }
+    }
+}
+
+fn is_cal(path: &Path) -> bool {
+    path.extension().is_some_and(|x| x == "cal")
+}
+
+/// Checks a calcomp file on its own. Names it leaves to its users (a scene, an rcalc
+/// command line) are noted, not errors.
+fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
+    let name = path.display().to_string();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            let file = sources.add(name.clone(), String::new());
+            diags.push(Diagnostic::new(
+                radc_lang::diagnostic::E0305,
+                radc_lang::Span::new(file, 0..0),
+                format!("cannot read '{name}': {e}"),
+            ));
+            return;
+        }
+    };
+    let file = FileId(sources_len(sources));
+    let (text, found) = radc_lang::source::decode(file, &bytes);
+    diags.extend(found);
+    // A file is either for the renderer (ray variables, rayinit.cal) or for rcalc and
+    // the generators (`$N`, `Px(i)` user functions are fine there): judge it as the
+    // one it fits, preferring the renderer.
+    let errors = |d: &Vec<Diagnostic>| d.iter().filter(|d| d.is_error()).count();
+    let renderer = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::renderer());
+    let found = if errors(&renderer) > 0 {
+        let rcalc = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::rcalc());
+        if errors(&rcalc) < errors(&renderer) {
+            rcalc
+        } else {
+            renderer
+        }
+    } else {
+        renderer
+    };
+    diags.extend(found);
+    sources.add(name, text);
+}
+
+/// Reads, parses and lowers `paths` in order as one scene.
+pub(super) fn check_scene(
+    paths: &[PathBuf],
+    allow_commands: bool,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) -> scene::ir::Scene {
+    let mut parsed = Vec::new();
+    let mut dirs = Vec::new();
+    for path in paths {
+        let name = path.display().to_string();
+        let bytes = match std::fs::read(path) {
+            Ok(b) => b,
+            Err(e) => {
+                let file = sources.add(name.clone(), String::new());
+                diags.push(Diagnostic::new(
+                    radc_lang::diagnostic::E0305,
+                    radc_lang::Span::new(file, 0..0),
+                    format!("cannot read '{name}': {e}"),
+                ));
+                continue;
+            }
+        };
+        let file = FileId(sources_len(sources));
+        let (text, mut found) = radc_lang::source::decode(file, &bytes);
+        let id = sources.add(name, text);
+        debug_assert_eq!(id, file);
+        let text = sources.get(id).map(|s| s.text.clone()).unwrap_or_default();
+        let (syntax, syntax_diags) = scene::parse(id, &text);
+        found.extend(syntax_diags);
+        diags.extend(found);
+        let warn_unused = path.extension().is_none_or(|x| x != "mat");
+        dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
+        parsed.push((id, syntax, warn_unused));
+    }
+    let inputs: Vec<LowerInput<'_>> = parsed
+        .iter()
+        .map(|(file, syntax, warn_unused)| LowerInput {
+            file: *file,
+            syntax,
+            warn_unused: *warn_unused,
+        })
+        .collect();
+    let pending = PendingSources::new(sources_len(sources));
+    let commands = Commands::new(dirs.clone(), &pending, allow_commands);
+    let lookup = SearchPath::new(dirs, &pending);
+    let (scene, more) = scene::lower_with(&inputs, &lookup, &commands);
+    drop((commands, lookup));
+    for (name, text) in pending.into_sources() {
+        sources.add(name, text);
+    }
+    diags.extend(more);
+    scene
+}
+
+fn sources_len(sources: &Sources) -> u32 {
+    let mut n = 0;
+    while sources.get(FileId(n)).is_some() {
+        n += 1;
+    }
+    n
+}
+
+/// Finds auxiliary files as Radiance does, plus the scene's own folder: absolute
+/// paths as they are; otherwise the folder of the scene file that names it, the
+/// current folder, then each folder of RAYPATH.
+struct SearchPath<'a> {
+    scene_dirs: Vec<(FileId, PathBuf)>,
+    raypath: Vec<PathBuf>,
+    pending: &'a PendingSources,
+}
+
+impl<'a> SearchPath<'a> {
+    fn new(scene_dirs: Vec<(FileId, PathBuf)>, pending: &'a PendingSources) -> Self {
+        let raypath = std::env::var_os("RAYPATH")
+            .map(|v| std::env::split_paths(&v).collect())
+            .unwrap_or_default();
+        SearchPath {
+            scene_dirs,
+            raypath,
+            pending,
+        }
+    }
+}
+
+impl SearchPath<'_> {
+    fn find(&self, name: &str, from: FileId) -> Option<PathBuf> {
+        let p = Path::new(name);
+        if p.is_absolute() {
+            return p.exists().then(|| p.to_path_buf());
+        }
+        let scene_dir = self
+            .scene_dirs
+            .iter()
+            .find(|(f, _)| *f == from)
+            .map(|(_, d)| d.clone())
+            .or_else(|| self.pending.dir_of(from));
+        scene_dir
+            .into_iter()
+            .chain(std::iter::once(PathBuf::from(".")))
+            .chain(self.raypath.iter().cloned())
+            .map(|d| d.join(p))
+            .find(|candidate| candidate.exists())
+    }
+}
+
+/// Auxiliary files larger than this are not read for content checks.
+const MAX_AUX_FILE: u64 = 64 << 20;
+
+impl FileLookup for SearchPath<'_> {
+    fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
+        self.find(name, from).is_some()
+    }
+
+    fn read(&self, name: &str, _kind: FileKind, from: FileId) -> Option<String> {
+        let path = self.find(name, from)?;
+        if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {
+            return None;
+        }
+        let bytes = std::fs::read(path).ok()?;
+        Some(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    fn load(&self, name: &str, kind: FileKind, from: FileId) -> Option<(FileId, String)> {
+        let text = self.read(name, kind, from)?;
+        let dir = self
+            .find(name, from)
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+            .unwrap_or_default();
+        Some((self.pending.add(name.to_string(), text.clone(), dir), text))
+    }
+
+    fn read_head(&self, name: &str, _kind: FileKind, from: FileId, max: usize) -> Option<Vec<u8>> {
+        use std::io::Read;
+        let file = std::fs::File::open(self.find(name, from)?).ok()?;
+        let mut head = Vec::with_capacity(max);
+        file.take(max as u64).read_to_end(&mut head).ok()?;
+        Some(head)
+    }
+}

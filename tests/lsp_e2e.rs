@@ -1,0 +1,533 @@
+//! End-to-end tests of `radc lsp`: the real binary driven over stdio with JSON-RPC, as
+//! an editor drives it. Every response is checked exactly.
+
+use std::io::{BufRead, BufReader, Write};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::Duration;
+
+use serde_json::{Value, json};
+
+const TIMEOUT: Duration = Duration::from_secs(20);
+
+/// A minimal LSP client: frames messages, correlates responses by id, keeps
+/// notifications until asked for, and answers requests from the server with `null`.
+struct Client {
+    child: Child,
+    stdin: ChildStdin,
+    incoming: Receiver<Value>,
+    unread: Vec<Value>,
+    next_id: i64,
+}
+
+impl Client {
+    fn start() -> Client {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
+            .arg("lsp")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("radc lsp starts");
+        let stdin = child.stdin.take().expect("stdin");
+        let stdout = child.stdout.take().expect("stdout");
+        let (tx, incoming) = channel();
+        std::thread::spawn(move || {
+            let mut reader = BufReader::new(stdout);
+            while let Some(message) = read_message(&mut reader) {
+                if tx.send(message).is_err() {
+                    break;
+                }
+            }
+        });
+        Client {
+            child,
+            stdin,
+            incoming,
+            unread: Vec::new(),
+            next_id: 1,
+        }
+    }
+
+    fn send(&mut self, message: &Value) {
+        let body = message.to_string();
+        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("write");
+        self.stdin.flush().expect("flush");
+    }
+
+    fn notify(&mut self, method: &str, params: Value) {
+        self.send(&json!({"jsonrpc": "2.0", "method": method, "params": params}));
+    }
+
+    fn receive(&mut self) -> Value {
+        let message = self
+            .incoming
+            .recv_timeout(TIMEOUT)
+            .expect("the server answers in time");
+        if let (Some(id), Some(_)) = (message.get("id"), message.get("method")) {
+            let reply = json!({"jsonrpc": "2.0", "id": id, "result": null});
+            self.send(&reply);
+        }
+        message
+    }
+
+    /// Sends a request and returns its `result` (panicking on an error response).
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        let id = self.next_id;
+        self.next_id += 1;
+        self.send(&json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        loop {
+            let message = self.receive();
+            if message.get("id") == Some(&json!(id)) && message.get("method").is_none() {
+                assert!(message.get("error").is_none(), "{method}: {message}");
+                return message.get("result").cloned().unwrap_or(Value::Null);
+            }
+            self.unread.push(message);
+        }
+    }
+
+    /// The params of the next notification called `method`.
+    fn notification(&mut self, method: &str) -> Value {
+        if let Some(i) = self.unread.iter().position(|m| m["method"] == method) {
+            return self.unread.remove(i)["params"].take();
+        }
+        loop {
+            let message = self.receive();
+            if message["method"] == method {
+                return message["params"].clone();
+            }
+            self.unread.push(message);
+        }
+    }
+
+    fn shutdown(mut self) {
+        assert_eq!(self.request("shutdown", Value::Null), Value::Null);
+        self.notify("exit", Value::Null);
+        for _ in 0..200 {
+            if let Ok(Some(status)) = self.child.try_wait() {
+                assert!(status.success(), "exit status {status}");
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(25));
+        }
+        let _ = self.child.kill();
+        panic!("the server did not exit after 'exit'");
+    }
+}
+
+fn read_message(reader: &mut impl BufRead) -> Option<Value> {
+    let mut length = None;
+    loop {
+        let mut line = String::new();
+        if reader.read_line(&mut line).ok()? == 0 {
+            return None;
+        }
+        let line = line.trim_end();
+        if line.is_empty() {
+            break;
+        }
+        if let Some(n) = line.strip_prefix("Content-Length: ") {
+            length = n.parse::<usize>().ok();
+        }
+    }
+    let mut body = vec![0; length?];
+    reader.read_exact(&mut body).ok()?;
+    serde_json::from_slice(&body).ok()
+}
+
+/// The LSP position of the `nth` occurrence of `needle` in `text`, plus `shift` columns.
+fn pos(text: &str, needle: &str, nth: usize, shift: u32) -> Value {
+    let offset = text
+        .match_indices(needle)
+        .nth(nth)
+        .map(|(i, _)| i)
+        .expect("needle in text");
+    let line = text[..offset].matches('\n').count();
+    let column = offset - text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    json!({"line": line, "character": column as u32 + shift})
+}
+
+fn range(l0: u32, c0: u32, l1: u32, c1: u32) -> Value {
+    json!({"start": {"line": l0, "character": c0}, "end": {"line": l1, "character": c1}})
+}
+
+/// A scene with one error: the sphere has three reals, not four.
+const BROKEN: &str =
+    "void plastic red\n0\n0\n5 .5 .1 .1 .05 .1\n\nred sphere ball\n0\n0\n3 0 0 0\n";
+
+/// The same scene fixed, laid out untidily.
+const UNTIDY: &str =
+    "void plastic red\n0\n0\n5 .5 .1 .1 .05 .1\n\n\n\nred   sphere ball 0 0\n4 0 0 0 1\n";
+
+const TIDY: &str =
+    "void plastic red\n0\n0\n5 .5 .1 .1 .05 .1\n\nred sphere ball\n0\n0\n4 0 0 0 1\n";
+
+struct Workspace {
+    _dir: tempfile::TempDir,
+    path: std::path::PathBuf,
+    uri: String,
+}
+
+fn workspace() -> Workspace {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("scene.rad");
+    let uri = format!("file://{}", path.display());
+    Workspace {
+        _dir: dir,
+        path,
+        uri,
+    }
+}
+
+fn initialize(client: &mut Client, options: Value) -> Value {
+    let result = client.request(
+        "initialize",
+        json!({"processId": null, "rootUri": null, "capabilities": {}, "initializationOptions": options}),
+    );
+    client.notify("initialized", json!({}));
+    result
+}
+
+fn open(client: &mut Client, uri: &str, text: &str) {
+    client.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": uri, "languageId": "radiance", "version": 1, "text": text}}),
+    );
+}
+
+fn change(client: &mut Client, uri: &str, version: i32, text: &str) {
+    client.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": version}, "contentChanges": [{"text": text}]}),
+    );
+}
+
+fn at(uri: &str, position: Value) -> Value {
+    json!({"textDocument": {"uri": uri}, "position": position})
+}
+
+#[test]
+fn a_session_from_initialize_to_exit() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let mut client = Client::start();
+
+    let init = initialize(&mut client, json!({"inlayHints": {"enabled": true}}));
+    assert_eq!(init["serverInfo"]["name"], "radc");
+    let caps = &init["capabilities"];
+    assert_eq!(caps["textDocumentSync"]["change"], 1);
+    for provider in [
+        "hoverProvider",
+        "definitionProvider",
+        "referencesProvider",
+        "documentSymbolProvider",
+        "inlayHintProvider",
+        "documentFormattingProvider",
+        "colorProvider",
+    ] {
+        assert_eq!(caps[provider], true, "{provider}");
+    }
+
+    // didOpen: the same diagnostic `radc check` gives, word for word.
+    open(&mut client, uri, BROKEN);
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(
+        published,
+        json!({
+            "uri": uri,
+            "version": 1,
+            "diagnostics": [{
+                "range": range(8, 0, 8, 1),
+                "severity": 1,
+                "code": "E0202",
+                "source": "radc",
+                "message": "sphere takes 4 real arguments, found 3",
+                "relatedInformation": [
+                    {"location": {"uri": uri, "range": range(5, 4, 5, 10)}, "message": "surface sphere"},
+                    {
+                        "location": {"uri": uri, "range": range(8, 0, 8, 1)},
+                        "message": "hint: sphere real arguments: xc yc zc radius"
+                    }
+                ]
+            }]
+        })
+    );
+    std::fs::write(&ws.path, BROKEN).expect("write scene");
+    let cli = Command::new(env!("CARGO_BIN_EXE_radc"))
+        .args(["check", "--format", "json"])
+        .arg(&ws.path)
+        .output()
+        .expect("radc check runs");
+    let cli: Vec<Value> = String::from_utf8_lossy(&cli.stdout)
+        .lines()
+        .filter_map(|l| serde_json::from_str(l).ok())
+        .collect();
+    assert_eq!(cli.len(), 1);
+    let lsp = &published["diagnostics"][0];
+    assert_eq!(cli[0]["code"], lsp["code"]);
+    assert_eq!(cli[0]["message"], lsp["message"]);
+    assert_eq!(
+        cli[0]["line"],
+        json!(lsp["range"]["start"]["line"].as_u64().map(|l| l + 1))
+    );
+
+    // didChange: fixed, diagnostics cleared for version 2.
+    change(&mut client, uri, 2, UNTIDY);
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(
+        published,
+        json!({"uri": uri, "version": 2, "diagnostics": []})
+    );
+
+    // Hover on a type keyword: its documentation and layout from the schema.
+    let hover = client.request("textDocument/hover", at(uri, pos(UNTIDY, "plastic", 0, 2)));
+    let plastic = radc_lang::schema::lookup("plastic").expect("plastic");
+    assert_eq!(hover["contents"]["kind"], "markdown");
+    assert_eq!(
+        hover["contents"]["value"],
+        radc_lang::schema::hover(plastic)
+    );
+    assert_eq!(hover["range"], range(0, 5, 0, 12));
+
+    // Hover on an argument: its name and meaning.
+    let hover = client.request("textDocument/hover", at(uri, pos(UNTIDY, ".05", 0, 1)));
+    let text = hover["contents"]["value"].as_str().unwrap_or_default();
+    assert!(text.starts_with("spec — specularity"), "{text}");
+    let hint = radc_lang::schema::arg_hint(plastic, radc_lang::schema::ArgSide::Reals, 3);
+    assert_eq!(
+        text,
+        format!(
+            "{}\n\nreal argument 4 of **plastic**",
+            hint.unwrap_or_default()
+        )
+    );
+    assert_eq!(hover["range"], range(3, 11, 3, 14));
+
+    // Hover on a modifier: its definition.
+    let hover = client.request("textDocument/hover", at(uri, pos(UNTIDY, "red ", 0, 1)));
+    assert_eq!(
+        hover["contents"]["value"],
+        "**red** — plastic (material), defined on line 1\n\n```radiance\nvoid plastic red\n0\n0\n5 .5 .1 .1 .05 .1\n```"
+    );
+    let hover = client.request(
+        "textDocument/hover",
+        at(uri, pos(UNTIDY, "red   sphere", 0, 0)),
+    );
+    assert_eq!(hover["range"], range(7, 0, 7, 3));
+
+    // Go to definition and find references.
+    let definition = client.request(
+        "textDocument/definition",
+        at(uri, pos(UNTIDY, "red   sphere", 0, 1)),
+    );
+    assert_eq!(
+        definition,
+        json!({"uri": uri, "range": range(0, 13, 0, 16)})
+    );
+    let mut params = at(uri, pos(UNTIDY, "plastic red", 0, 9));
+    params["context"] = json!({"includeDeclaration": true});
+    let references = client.request("textDocument/references", params);
+    assert_eq!(
+        references,
+        json!([{"uri": uri, "range": range(0, 13, 0, 16)}, {"uri": uri, "range": range(7, 0, 7, 3)}])
+    );
+
+    // Inlay hints name the reals.
+    let hints = client.request(
+        "textDocument/inlayHint",
+        json!({"textDocument": {"uri": uri}, "range": range(0, 0, 9, 0)}),
+    );
+    let labels: Vec<&str> = hints
+        .as_array()
+        .map(|a| a.iter().filter_map(|h| h["label"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(
+        labels,
+        [
+            "red=", "green=", "blue=", "spec=", "rough=", "xc=", "yc=", "zc=", "radius="
+        ]
+    );
+    assert_eq!(
+        hints[3],
+        json!({"position": {"line": 3, "character": 11}, "label": "spec=", "kind": 2})
+    );
+
+    // Outline and colours.
+    let symbols = client.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    let outline: Vec<(String, String)> = symbols
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|s| (s["name"].to_string(), s["detail"].to_string()))
+                .collect()
+        })
+        .unwrap_or_default();
+    assert_eq!(
+        outline,
+        [
+            ("\"red\"".to_string(), "\"plastic\"".to_string()),
+            ("\"ball\"".to_string(), "\"sphere\"".to_string())
+        ]
+    );
+    let colors = client.request(
+        "textDocument/documentColor",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    // Colours travel as f32.
+    let tenth = f64::from(0.1f32);
+    assert_eq!(
+        colors,
+        json!([{"range": range(3, 2, 3, 10), "color": {"red": 0.5, "green": tenth, "blue": tenth, "alpha": 1.0}}])
+    );
+    let presentations = client.request(
+        "textDocument/colorPresentation",
+        json!({"textDocument": {"uri": uri}, "range": range(3, 2, 3, 10),
+               "color": {"red": 0.25, "green": 0.5, "blue": 1.0, "alpha": 1.0}}),
+    );
+    assert_eq!(
+        presentations,
+        json!([{"label": "0.25 0.5 1", "textEdit": {"range": range(3, 2, 3, 10), "newText": "0.25 0.5 1"}}])
+    );
+
+    // Formatting: one edit to the conventional layout; formatting that again is a no-op.
+    let options = json!({"tabSize": 4, "insertSpaces": true});
+    let edits = client.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": options}),
+    );
+    assert_eq!(
+        edits,
+        json!([{"range": range(0, 0, 9, 0), "newText": TIDY}])
+    );
+    change(&mut client, uri, 3, TIDY);
+    client.notification("textDocument/publishDiagnostics");
+    let edits = client.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": options}),
+    );
+    assert_eq!(edits, json!([]));
+
+    // Completion: modifiers in scope at the start of a line, types after a modifier.
+    let typing = format!("{TIDY}\nred ");
+    change(&mut client, uri, 4, &typing);
+    client.notification("textDocument/publishDiagnostics");
+    let types = client.request(
+        "textDocument/completion",
+        at(uri, json!({"line": 10, "character": 4})),
+    );
+    let items = types.as_array().cloned().unwrap_or_default();
+    assert_eq!(items.len(), radc_lang::schema::PRIMITIVE_TYPES.len());
+    let plastic_item = items
+        .iter()
+        .find(|i| i["label"] == "plastic")
+        .cloned()
+        .unwrap_or_default();
+    assert_eq!(plastic_item["insertTextFormat"], 2);
+    assert_eq!(
+        plastic_item["textEdit"],
+        json!({
+            "range": range(10, 4, 10, 4),
+            "newText": "plastic ${2:name}\n0\n0\n5 ${3:red} ${4:green} ${5:blue} ${6:spec} ${7:rough}"
+        })
+    );
+    let modifiers = client.request(
+        "textDocument/completion",
+        at(uri, json!({"line": 10, "character": 1})),
+    );
+    let labels: Vec<&str> = modifiers
+        .as_array()
+        .map(|a| a.iter().filter_map(|i| i["label"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(labels, ["void", "red"]);
+    assert_eq!(modifiers[1]["textEdit"]["range"], range(10, 0, 10, 1));
+
+    client.shutdown();
+}
+
+#[test]
+fn inlay_hints_follow_the_setting() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let mut client = Client::start();
+    initialize(&mut client, json!({"inlayHints": {"enabled": false}}));
+    open(&mut client, uri, TIDY);
+    client.notification("textDocument/publishDiagnostics");
+    let params = json!({"textDocument": {"uri": uri}, "range": range(0, 0, 9, 0)});
+    assert_eq!(
+        client.request("textDocument/inlayHint", params.clone()),
+        Value::Null
+    );
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"radc": {"inlayHints": {"enabled": true}}}}),
+    );
+    client.notification("textDocument/publishDiagnostics");
+    let hints = client.request("textDocument/inlayHint", params);
+    assert_eq!(hints.as_array().map(Vec::len), Some(9));
+    client.shutdown();
+}
+
+#[test]
+fn never_runs_commands_and_survives_nonsense() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let marker = ws.path.with_file_name("ran");
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    let text = format!(
+        "!touch {}\nvoid plastic\0 \"x\n5 1e999 -- \u{1F600}\n",
+        marker.display()
+    );
+    open(&mut client, uri, &text);
+    let published = client.notification("textDocument/publishDiagnostics");
+    let codes: Vec<&str> = published["diagnostics"]
+        .as_array()
+        .map(|a| a.iter().filter_map(|d| d["code"].as_str()).collect())
+        .unwrap_or_default();
+    assert!(codes.contains(&"W0303"), "{codes:?}");
+    assert!(!marker.exists(), "the server ran a '!' command");
+
+    // Positions past the end, documents never opened, formatting a broken file.
+    for (method, params) in [
+        (
+            "textDocument/hover",
+            at(uri, json!({"line": 99, "character": 99})),
+        ),
+        (
+            "textDocument/definition",
+            at(uri, json!({"line": 1, "character": 999})),
+        ),
+        (
+            "textDocument/completion",
+            at(uri, json!({"line": 2, "character": 3})),
+        ),
+        (
+            "textDocument/hover",
+            at(
+                "file:///never/opened.rad",
+                json!({"line": 0, "character": 0}),
+            ),
+        ),
+        (
+            "textDocument/formatting",
+            json!({"textDocument": {"uri": uri}, "options": {"tabSize": 2, "insertSpaces": true}}),
+        ),
+    ] {
+        let result = client.request(method, params);
+        assert!(
+            result.is_null() || result.is_array() || result.is_object(),
+            "{method}: {result}"
+        );
+    }
+    assert_eq!(
+        client.request(
+            "textDocument/formatting",
+            json!({"textDocument": {"uri": uri}, "options": {"tabSize": 2, "insertSpaces": true}})
+        ),
+        Value::Null
+    );
+    client.shutdown();
+}
