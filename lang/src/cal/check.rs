@@ -118,7 +118,12 @@ impl Checker<'_> {
             )
         };
         let known = self.m.known_names();
-        match suggest(name, known.iter().copied().filter(|k| k != name))
+        // Prefer names spelt in the same case (`sqrt` over rayinit.cal's `Sqrt`).
+        let same_case = |k: &&str| {
+            k.chars().next().map(char::is_uppercase) == name.chars().next().map(char::is_uppercase)
+        };
+        match suggest(name, known.iter().copied().filter(|k| k != name && same_case(k)))
+            .or_else(|| suggest(name, known.iter().copied().filter(|k| k != name)))
             .or_else(|| transposed(name, &known))
         {
             Some(s) => d = d.with_hint(format!("did you mean '{s}'?")),
