@@ -118,14 +118,7 @@ impl Checker<'_> {
             )
         };
         let known = self.m.known_names();
-        // Prefer names spelt in the same case (`sqrt` over rayinit.cal's `Sqrt`).
-        let same_case = |k: &&str| {
-            k.chars().next().map(char::is_uppercase) == name.chars().next().map(char::is_uppercase)
-        };
-        match suggest(name, known.iter().copied().filter(|k| k != name && same_case(k)))
-            .or_else(|| suggest(name, known.iter().copied().filter(|k| k != name)))
-            .or_else(|| transposed(name, &known))
-        {
+        match closest_name(name, &known, |k| self.m.library().any(|l| l.name() == k)) {
             Some(s) => d = d.with_hint(format!("did you mean '{s}'?")),
             None => {
                 d = d.with_hint(
@@ -371,6 +364,33 @@ impl Checker<'_> {
             }
         }
     }
+}
+
+/// The "did you mean" candidate: `suggest`'s distance limit, then among equally close
+/// names the library's own (`sqrt` before rayinit.cal's `Sqrt` or `sq` for `sqt`), the
+/// same initial case, and the longer name; else a swap of two adjacent characters.
+fn closest_name<'a>(
+    name: &str,
+    known: &[&'a str],
+    is_library: impl Fn(&str) -> bool,
+) -> Option<&'a str> {
+    let candidates: Vec<&str> = known.iter().copied().filter(|k| *k != name).collect();
+    let Some(best) = suggest(name, candidates.iter().copied()) else {
+        return transposed(name, known);
+    };
+    let distance = diagnostic::edit_distance(name, best);
+    let upper = |s: &str| s.chars().next().is_some_and(char::is_uppercase);
+    candidates
+        .into_iter()
+        .filter(|k| diagnostic::edit_distance(name, k) == distance)
+        .max_by_key(|k| {
+            (
+                is_library(k),
+                upper(k) == upper(name),
+                k.len(),
+                std::cmp::Reverse(*k),
+            )
+        })
 }
 
 /// A known name that is `name` with two adjacent characters swapped (`scael` for
