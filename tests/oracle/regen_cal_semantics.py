@@ -126,6 +126,8 @@ CASES = [
     ("no-input-no-output", e("$1=1"), ""),
     ("n-with-input-names-fails", N + e("$1=$1"), ""),
     ("file-arguments", e("$1=$1*2"), None),
+    ("files-restart-recno", e("$1=$1;$2=recno;$3=outno") + ["data.txt", "data2.txt"], ""),
+    ("files-limit-each", ["-in", "1"] + e("$1=$1") + ["data.txt", "data2.txt"], ""),
     # --- output formats (rcalc.c putrec) ---
     ("format-inline", ["-s", "s=hello", "-o", "$(s) x=${ a*1000.5 } [${b}] $$ ${a/3}"] + e("a=$1;b=$2"), "1.5 2\n-3 1e6\n"),
     ("format-adjacent", ["-o", "${a}${b};${a+b}"] + e("a=$1;b=$2"), "1.5 2\n0.1 -7\n"),
@@ -185,6 +187,8 @@ def main():
     check = "--check" in sys.argv[1:]
     with open(os.path.join(DATA, "data.txt"), "w") as f:
         f.write("1\n2.5\n-3\n")
+    with open(os.path.join(DATA, "data2.txt"), "w") as f:
+        f.write("10\n20\n")
     cases = []
     for name, args, stdin in CASES:
         r = run(args, stdin)

@@ -100,6 +100,12 @@ impl<'m> Interpreter<'m> {
         self.outputs(&mut NoInput)
     }
 
+    /// A new input file: rcalc numbers records (`recno`, `outno`) from 1 in each.
+    pub fn start_file(&mut self) {
+        self.nrecs = 0;
+        self.nout = 0;
+    }
+
     /// Start rcalc's single `-n` record, for callers that evaluate their own
     /// expressions (an `-o` format) with [`Interpreter::eval`].
     pub fn begin_single(&mut self) {

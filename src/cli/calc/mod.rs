@@ -380,6 +380,8 @@ fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
             match std::fs::File::open(f) {
                 Ok(file) => {
                     let mut input = std::io::BufReader::new(file);
+                    // rcalc.c `execute` counts records (recno, -in, -on) per file.
+                    interp.start_file();
                     status = run_stream(&mut input, &mut interp, o, &mut out);
                 }
                 Err(e) => {
@@ -397,15 +399,12 @@ fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
     let flushed = out.flush();
     match (status, flushed) {
         (Ok(()), Ok(())) => ExitCode::SUCCESS,
-        (Err(Stop::Done), _) => ExitCode::SUCCESS,
         (Ok(()), Err(_)) => ExitCode::FAILURE,
         (Err(Stop::Failed), _) => ExitCode::FAILURE,
     }
 }
 
 enum Stop {
-    /// `-in`/`-on` limit reached.
-    Done,
     Failed,
 }
 
@@ -450,7 +449,7 @@ fn run_stream<'m>(
             nout += 1;
         }
         if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
-            return Err(Stop::Done);
+            return Ok(()); // this file is done; rcalc goes on with the next
         }
     }
 }
@@ -501,7 +500,7 @@ fn run_matched<'m>(
         }
         nout += u64::from(produced);
         if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
-            return Err(Stop::Done);
+            return Ok(()); // this file is done; rcalc goes on with the next
         }
     }
     Ok(())
