@@ -404,6 +404,8 @@ fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
     }
 }
 
+/// Why record processing stopped early: an evaluation error (already reported) or a
+/// write failure. Either way the exit status is 1.
 enum Stop {
     Failed,
 }
