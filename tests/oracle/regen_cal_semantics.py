@@ -149,6 +149,7 @@ CASES = [
     ("ignore-eol-after-iformat", ["-i", "${x} ${y}", "-l", "-o", "[${x+y}]"], "a 1\n2 b 3\n4\n5 junk\n"),
     # --- files and RAYPATH ---
     ("function-file", ["-f", "defs.cal"] + N + e("$1=hyp(3,4);$2=twice(sq,3);$3=scale;$4=local"), ""),
+    ("table-functions", ["-f", "tables.cal"] + e("$1=ta($1);$2=tb($1);$3=ta`q7(2)"), "0\n1.5\n2\n4.75\n9\n20\n-3\n"),
     ("function-file-dot", ["-f", "."] + N + e("$1=1"), ""),
     ("function-file-missing", ["-f", "nosuch.cal"] + N + e("$1=1"), ""),
     ("order-of-e-and-f", ["-e", "scale=1", "-f", "defs.cal"] + N + e("$1=scale"), ""),
