@@ -91,6 +91,9 @@ pub struct RayState {
     pub kind: RayKind,
     pub weight: f64,
     pub level: u32,
+    /// Rays in the chain down from the primary, of every kind (transmitted rays keep
+    /// `level`).
+    pub depth: u32,
     /// Coefficient applied by the parent.
     pub coef: Color,
     /// Source this (shadow) ray is aimed at.
@@ -119,6 +122,7 @@ impl RayState {
             kind: RayKind::PRIMARY,
             weight: 1.0,
             level: 0,
+            depth: 0,
             coef: Color::ONE,
             source: None,
             hit: Target::None,
@@ -178,6 +182,11 @@ impl RayState {
         }
     }
 }
+
+/// Longest chain of rays radc follows. Radiance limits reflections (`-lr`) but not rays
+/// passing through surfaces; a scene of thousands of stacked `void` surfaces would
+/// otherwise exhaust the stack.
+pub const MAX_CHAIN: u32 = 10_000;
 
 /// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
 const LAMBERTIAN: Normal = Normal {
@@ -311,6 +320,10 @@ impl<'a> Tracer<'a> {
         child.coef = coef.unwrap_or(Color::ONE);
         child.weight = r.weight * rw;
         child.level = r.level + u32::from(kind.reflects());
+        child.depth = r.depth + 1;
+        if child.depth > MAX_CHAIN {
+            return None;
+        }
         child.source = if kind.reflects() { None } else { r.source };
         if child.weight <= 0.0 || child.weight.is_nan() {
             return None;

@@ -95,6 +95,10 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
+    super::trace::with_deep_stacks(|| run_parsed(args))
+}
+
+fn run_parsed(args: &[String]) -> ExitCode {
     let a = match parse_args(args) {
         Ok(a) => a,
         Err(e) => {

@@ -176,6 +176,18 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
     Ok(a)
 }
 
+/// Runs `f` in a rayon pool whose threads have room for long ray chains (mirrors,
+/// stacks of pass-through surfaces: up to `MAX_CHAIN` nested evaluations).
+pub(super) fn with_deep_stacks(f: impl FnOnce() -> ExitCode + Send) -> ExitCode {
+    match rayon::ThreadPoolBuilder::new()
+        .stack_size(256 << 20)
+        .build()
+    {
+        Ok(pool) => pool.install(f),
+        Err(_) => f(),
+    }
+}
+
 /// The next argument as a finite number.
 pub(super) fn number<'a>(
     it: &mut impl Iterator<Item = &'a str>,
@@ -225,6 +237,10 @@ pub(super) fn render_option<'a>(
 }
 
 pub fn run(args: &[String]) -> ExitCode {
+    super::trace::with_deep_stacks(|| run_parsed(args))
+}
+
+fn run_parsed(args: &[String]) -> ExitCode {
     let a = match parse_args(args) {
         Ok(a) => a,
         Err(e) => {
@@ -400,7 +416,7 @@ impl<R: BufRead> RayReader<R> {
             }
             for w in self.line.split_whitespace() {
                 // rtrace stops at the first word that is not a number.
-                let Ok(x) = w.parse::<f64>() else {
+                let Some(x) = radiance_number(w) else {
                     self.words.push_back(f64::NAN);
                     break;
                 };
@@ -408,6 +424,28 @@ impl<R: BufRead> RayReader<R> {
             }
         }
         self.words.pop_front().filter(|x| !x.is_nan())
+    }
+}
+
+/// A word in Radiance's real-number syntax (`[+-]digits[.digits][e[+-]digits]`, or
+/// starting with the point): no `inf`, `nan` or hex, which Rust would otherwise accept.
+fn radiance_number(w: &str) -> Option<f64> {
+    let body = w.strip_prefix(['+', '-']).unwrap_or(w);
+    let (mantissa, exponent) = match body.find(['e', 'E']) {
+        Some(i) => (&body[..i], Some(&body[i + 1..])),
+        None => (body, None),
+    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
+    let ok_mantissa = digits(int) && digits(frac) && !(int.is_empty() && frac.is_empty());
+    let ok_exponent = exponent.is_none_or(|e| {
+        let e = e.strip_prefix(['+', '-']).unwrap_or(e);
+        !e.is_empty() && digits(e)
+    });
+    if ok_mantissa && ok_exponent {
+        w.parse().ok()
+    } else {
+        None
     }
 }
 
@@ -510,6 +548,33 @@ mod tests {
         assert_eq!(c_exp(3.141718), "3.141718e+00");
         assert_eq!(c_exp(-1.5e-120), "-1.500000e-120");
         assert_eq!(c_exp(9.9999999e9), "1.000000e+10");
+    }
+
+    #[test]
+    fn numbers_in_radiance_syntax_only() {
+        for (w, v) in [
+            ("1", 1.0),
+            ("-2.5", -2.5),
+            (".5", 0.5),
+            ("5.", 5.0),
+            ("1e3", 1e3),
+            ("+1.5E-2", 0.015),
+        ] {
+            assert_eq!(radiance_number(w), Some(v), "{w}");
+        }
+        for w in [
+            "nan",
+            "inf",
+            "-infinity",
+            "0x10",
+            ".",
+            "e5",
+            "1e",
+            "1.2.3",
+            "",
+        ] {
+            assert_eq!(radiance_number(w), None, "{w}");
+        }
     }
 
     #[test]
