@@ -4,6 +4,7 @@
 //! for smaller `-ds`, exactly as Radiance splits them, so sample directions and solid
 //! angles agree with rtrace.
 
+use crate::materials::light::Spot;
 use crate::math::{FHUGE, FTINY, Vec3, normalize, perpendicular};
 
 /// Radiance's `MAXSPART`: partitions per source, and the unit of partition coordinates.
@@ -34,6 +35,8 @@ pub struct Source {
     pub shape: SourceShape,
     /// `glow` sources only light points within this distance.
     pub proximity: Option<f64>,
+    /// `spotlight` sources only light points inside their cone.
+    pub spot: Option<Spot>,
     /// The surface this source is: local object index or distant-source index.
     pub target: SourceTarget,
 }
@@ -202,16 +205,28 @@ impl Source {
             }],
         };
         let np = parts.len();
+        let local = !matches!(self.shape, SourceShape::Distant { .. });
         for p in parts {
-            if let Some(s) = self.sample(org, p, np) {
-                if let Some(prox) = self.proximity
-                    && s.dist > prox
-                    && !matches!(self.shape, SourceShape::Distant { .. })
-                {
+            let Some(mut s) = self.sample(org, p, np) else {
+                continue;
+            };
+            if let Some(prox) = self.proximity
+                && s.dist > prox
+                && local
+            {
+                continue;
+            }
+            if let Some(spot) = &self.spot
+                && local
+            {
+                if spot.excludes(s.dir) {
                     continue;
                 }
-                out.push(s);
+                // The solid angle as seen from the spot's virtual focus (srcray).
+                let d = s.dist + spot.focus;
+                s.omega *= s.dist * s.dist / (d * d);
             }
+            out.push(s);
         }
     }
 
@@ -348,6 +363,7 @@ mod tests {
         Source {
             shape: SourceShape::polygon(&verts, -Vec3::Z, side * side),
             proximity: None,
+            spot: None,
             target: SourceTarget::Object(0),
         }
     }

@@ -6,7 +6,7 @@ use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
-use crate::materials::light::{Emitter, EmitterKind};
+use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic};
 use crate::math::{Vec3, vec3};
@@ -260,6 +260,20 @@ impl Compiler<'_> {
                     max_radius: *max_radius,
                 },
             }),
+            PrimKind::Spotlight {
+                color,
+                angle,
+                direction,
+            } => match Spot::new(*angle, vec3(*direction)) {
+                Some(spot) => Material::Emitter(Emitter {
+                    color: rgb(color),
+                    kind: EmitterKind::Spot(spot),
+                }),
+                None => {
+                    self.unsupported(kind, "a spotlight needs a positive angle and a direction");
+                    return None;
+                }
+            },
             PrimKind::Illum { alternate, color } => {
                 let alternate = self.alternate(kind, alternate.as_deref());
                 Material::Emitter(Emitter {
@@ -322,6 +336,10 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
         EmitterKind::Glow { max_radius } => Some(max_radius),
         _ => None,
     };
+    let spot = |e: &Emitter| match e.kind {
+        EmitterKind::Spot(s) => Some(s),
+        _ => None,
+    };
     let mut out = Vec::new();
     for (i, o) in scene.objects.iter().enumerate() {
         let Some(e) = emitter(o.material) else {
@@ -335,9 +353,16 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
             // samples along their length, which radc does not yet.
             _ => continue,
         };
+        // A flat spotlight aimed behind itself is skipped (with a warning in Radiance).
+        if let (Some(s), SourceShape::Flat { normal, .. }) = (spot(&e), &shape)
+            && !s.faces(*normal)
+        {
+            continue;
+        }
         out.push(Source {
             shape,
             proximity: proximity(&e),
+            spot: spot(&e),
             target: SourceTarget::Object(i as u32),
         });
     }
@@ -355,6 +380,7 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
                 solid_angle: d.solid_angle,
             },
             proximity: None,
+            spot: None,
             target: SourceTarget::Distant(i as u32),
         });
     }

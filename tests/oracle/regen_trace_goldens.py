@@ -172,6 +172,14 @@ def cases():
     case("hard-mirrors-lr3", "hard.rad", ["-lr", "3"], mirrors, "-ov")
     # A positive -lr: below -lw rtrace would otherwise play (random) Russian roulette.
     case("hard-mirrors-lw", "hard.rad", ["-lr", "10", "-lw", ".3"], mirrors, "-ov")
+    spot_view = box_rays(rng, 50, [-3, -3, 1], [3, 3, 3.5], toward=[0, 0, 0], spread=3)
+    case("spots-view", "spots.rad", [], spot_view, "-ovL")
+    case(
+        "spots-irradiance",
+        "spots.rad",
+        ["-I"],
+        irradiance_points(rng, 40, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
+    )
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
