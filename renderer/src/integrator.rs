@@ -194,6 +194,7 @@ const LAMBERTIAN: Normal = Normal {
     spec: 0.0,
     rough: 0.0,
     metal: false,
+    transmission: None,
 };
 
 /// Evaluates rays in a compiled scene.
@@ -268,11 +269,14 @@ impl<'a> Tracer<'a> {
         // `-i`: a primary (or passed-through) ray sees every reflecting surface as the
         // white Lambertian of `-I` (raytrace.c's `raytirrad`); lights stay lights.
         let primary = r.kind.0 & !(RayKind::PRIMARY.0 | RayKind::TRANS.0) == 0;
-        if self.options.irradiance_at_hits
-            && primary
-            && matches!(material, Some(Material::Normal(_) | Material::Mirror(_)))
-        {
-            return LAMBERTIAN.shade(self, r);
+        if self.options.irradiance_at_hits && primary {
+            match material {
+                Some(m) if m.is_transparent() => return self.transmit(r),
+                Some(Material::Normal(_) | Material::Mirror(_)) => {
+                    return LAMBERTIAN.shade(self, r);
+                }
+                _ => {}
+            }
         }
         match material {
             Some(Material::Normal(n)) => n.shade(self, r),
@@ -379,10 +383,19 @@ impl<'a> Tracer<'a> {
         else {
             return true;
         };
-        match (on.material.is_some(), oo.material.is_some()) {
-            (false, true) => return true,
-            (true, false) => return false,
-            _ => {}
+        let (mn, mo) = (
+            on.material.and_then(|m| self.scene.material(m)),
+            oo.material.and_then(|m| self.scene.material(m)),
+        );
+        match (mn, mo) {
+            (None, Some(_)) => return true,
+            (Some(_), None) => return false,
+            (Some(n), Some(o)) => match (n.is_transparent(), o.is_transparent()) {
+                (true, false) => return true,
+                (false, true) => return false,
+                _ => {}
+            },
+            (None, None) => {}
         }
         if new.rod <= 0.0 {
             if old.rod > 0.0 {

@@ -8,7 +8,7 @@ use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
-use crate::materials::{Alternate, Material, MaterialId, metal, plastic};
+use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 
@@ -239,7 +239,15 @@ impl Compiler<'_> {
                 spec: *spec,
                 rough: *rough,
                 metal: false,
+                transmission: None,
             }),
+            PrimKind::Trans {
+                color,
+                spec,
+                rough,
+                trans: tr,
+                tspec,
+            } => Material::Normal(trans::trans(rgb(color), *spec, *rough, *tr, *tspec)),
             PrimKind::Metal { color, spec, rough } => {
                 Material::Normal(metal::metal(rgb(color), *spec, *rough))
             }

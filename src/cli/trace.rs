@@ -61,6 +61,10 @@ enum Output {
     SurfaceNormal,
     EffectiveLength,
     Length,
+    Mirrored,
+    MirroredLength,
+    Unmirrored,
+    UnmirroredLength,
     Surface,
     Modifier,
     Material,
@@ -83,13 +87,17 @@ impl Output {
                     'N' => Output::SurfaceNormal,
                     'l' => Output::EffectiveLength,
                     'L' => Output::Length,
+                    'r' => Output::Mirrored,
+                    'R' => Output::MirroredLength,
+                    'x' => Output::Unmirrored,
+                    'X' => Output::UnmirroredLength,
                     's' => Output::Surface,
                     'm' => Output::Modifier,
                     'M' => Output::Material,
                     '~' => Output::Tilde,
                     _ => {
                         return Err(format!(
-                            "output '{c}' is not supported (radc knows v o d p n N l L s m M ~)"
+                            "output '{c}' is not supported (radc knows v o d p n N l L r R x X s m M ~)"
                         ));
                     }
                 })
@@ -477,6 +485,10 @@ fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
             ),
             Output::EffectiveLength => put(out, a.output, &[r.effective_length()]),
             Output::Length => put(out, a.output, &[r.length]),
+            Output::Mirrored => put(out, a.output, &r.mirror_color.to_array()),
+            Output::MirroredLength => put(out, a.output, &[r.mirror_length]),
+            Output::Unmirrored => put(out, a.output, &(r.color - r.mirror_color).to_array()),
+            Output::UnmirroredLength => put(out, a.output, &[r.other_length]),
             Output::Surface | Output::Modifier | Output::Material => {
                 let name = names(r, scene, *o);
                 let _ = write!(out, "{name}\t");

@@ -5,6 +5,7 @@ pub mod light;
 pub mod metal;
 pub mod mirror;
 pub mod plastic;
+pub mod trans;
 
 use crate::math::Color;
 
@@ -32,6 +33,11 @@ pub enum Alternate {
 }
 
 impl Material {
+    /// Radiance's `istransp`: transmitting types lose ties to opaque ones.
+    pub fn is_transparent(&self) -> bool {
+        matches!(self, Material::Normal(n) if n.is_transparent())
+    }
+
     pub fn color(&self) -> Color {
         match self {
             Material::Normal(n) => n.color,
