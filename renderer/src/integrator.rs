@@ -281,6 +281,7 @@ impl<'a> Tracer<'a> {
         match material {
             Some(Material::Normal(n)) => n.shade(self, r),
             Some(Material::Mirror(m)) => m.shade(self, r),
+            Some(Material::Glass(g)) => g.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             None => self.transmit(r),
         }

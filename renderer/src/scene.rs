@@ -6,6 +6,7 @@ use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
+use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
@@ -258,6 +259,13 @@ impl Compiler<'_> {
                     alternate,
                 })
             }
+            PrimKind::Glass {
+                transmission,
+                index,
+            } => Material::Glass(Glass {
+                transmission: rgb(transmission),
+                index: *index,
+            }),
             PrimKind::Light { color } => Material::Emitter(Emitter {
                 color: rgb(color),
                 kind: EmitterKind::Light,

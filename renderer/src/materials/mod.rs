@@ -1,6 +1,7 @@
 //! Materials: what a ray sees where it hits. Each file reproduces one of Radiance's
 //! shading routines; `Material` is the closed set the renderer models so far.
 
+pub mod glass;
 pub mod light;
 pub mod metal;
 pub mod mirror;
@@ -18,6 +19,7 @@ pub enum Material {
     /// `plastic` and `metal`: Radiance's "normal" materials (normal.c).
     Normal(plastic::Normal),
     Mirror(mirror::Mirror),
+    Glass(glass::Glass),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
 }
@@ -35,13 +37,18 @@ pub enum Alternate {
 impl Material {
     /// Radiance's `istransp`: transmitting types lose ties to opaque ones.
     pub fn is_transparent(&self) -> bool {
-        matches!(self, Material::Normal(n) if n.is_transparent())
+        match self {
+            Material::Normal(n) => n.is_transparent(),
+            Material::Glass(_) => true,
+            _ => false,
+        }
     }
 
     pub fn color(&self) -> Color {
         match self {
             Material::Normal(n) => n.color,
             Material::Mirror(m) => m.color,
+            Material::Glass(g) => g.transmission,
             Material::Emitter(e) => e.color,
         }
     }
