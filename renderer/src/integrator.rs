@@ -20,6 +20,7 @@ impl RayKind {
     pub const PRIMARY: RayKind = RayKind(0o1);
     pub const SHADOW: RayKind = RayKind(0o2 | 0o200);
     pub const REFLECTED: RayKind = RayKind(0o4);
+    pub const REFRACTED: RayKind = RayKind(0o10);
     pub const TRANS: RayKind = RayKind(0o20);
     pub const AMBIENT: RayKind = RayKind(0o40 | 0o400);
     pub const SPECULAR: RayKind = RayKind(0o100 | 0o1000);
@@ -112,6 +113,8 @@ pub struct RayState {
     pub mirror_length: f64,
     /// The distance of everything else (through transparent surfaces).
     pub other_length: f64,
+    /// Extinction coefficient of the medium the ray travels in (inside a dielectric).
+    pub extinction: Color,
 }
 
 impl RayState {
@@ -135,6 +138,7 @@ impl RayState {
             mirror_color: Color::ZERO,
             mirror_length: FHUGE,
             other_length: FHUGE,
+            extinction: Color::ZERO,
         }
     }
 
@@ -187,6 +191,28 @@ impl RayState {
 /// passing through surfaces; a scene of thousands of stacked `void` surfaces would
 /// otherwise exhaust the stack.
 pub const MAX_CHAIN: u32 = 10_000;
+
+/// Absorption along a ray inside a medium (`rayparticipate` without scattering).
+fn participate(r: &mut RayState) {
+    if r.extinction.max_element() <= 1.0 / FHUGE {
+        return;
+    }
+    let att = |k: f64| {
+        let e = r.length * k;
+        if e <= FTINY {
+            1.0
+        } else if e > 92.0 {
+            0.0
+        } else {
+            (-e).exp()
+        }
+    };
+    r.color *= Color::new(
+        att(r.extinction.x),
+        att(r.extinction.y),
+        att(r.extinction.z),
+    );
+}
 
 /// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
 const LAMBERTIAN: Normal = Normal {
@@ -260,6 +286,7 @@ impl<'a> Tracer<'a> {
             let material = self.scene.distant.get(d as usize).and_then(|o| o.material);
             self.shade(r, material);
         }
+        participate(r);
     }
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
@@ -282,6 +309,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Normal(n)) => n.shade(self, r),
             Some(Material::Mirror(m)) => m.shade(self, r),
             Some(Material::Glass(g)) => g.shade(self, r),
+            Some(Material::Dielectric(d)) => d.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             None => self.transmit(r),
         }
@@ -324,6 +352,16 @@ impl<'a> Tracer<'a> {
         child.kind = r.kind | kind;
         child.coef = coef.unwrap_or(Color::ONE);
         child.weight = r.weight * rw;
+        child.extinction = r.extinction;
+        // The parent's path through an absorbing medium weakens what follows it.
+        let re = r.extinction.min_element() * r.length;
+        if re > 0.1 {
+            child.weight = if re > 92.0 {
+                0.0
+            } else {
+                child.weight * (-re).exp()
+            };
+        }
         child.level = r.level + u32::from(kind.reflects());
         child.depth = r.depth + 1;
         if child.depth > MAX_CHAIN {
@@ -500,6 +538,7 @@ impl<'a> Tracer<'a> {
                 sr.rod = h.rod;
                 let material = self.scene.object(h.object).and_then(|o| o.material);
                 self.shade(&mut sr, material);
+                participate(&mut sr);
                 let mean = (sr.color.x + sr.color.y + sr.color.z) / 3.0;
                 (mean > FTINY).then(|| sr.color * c)
             }
@@ -527,6 +566,7 @@ impl<'a> Tracer<'a> {
                 self.shade(&mut probe, self.scene.distant.get(d as usize)?.material);
             }
         }
+        participate(&mut probe);
         Some(probe.color)
     }
 }

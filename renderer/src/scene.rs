@@ -6,6 +6,7 @@ use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
+use crate::materials::dielectric::Dielectric;
 use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
@@ -265,6 +266,29 @@ impl Compiler<'_> {
             } => Material::Glass(Glass {
                 transmission: rgb(transmission),
                 index: *index,
+            }),
+            PrimKind::Dielectric {
+                transmission,
+                index,
+                hartmann,
+            } => {
+                if *hartmann != 0.0 {
+                    self.unsupported(
+                        kind,
+                        "dispersion (a non-zero Hartmann constant) is not rendered yet",
+                    );
+                    return None;
+                }
+                Material::Dielectric(Dielectric {
+                    inside: rgb(transmission),
+                    index: *index,
+                    outside: None,
+                })
+            }
+            PrimKind::Interface { t1, n1, t2, n2 } => Material::Dielectric(Dielectric {
+                inside: rgb(t1),
+                index: *n1 / *n2,
+                outside: Some(rgb(t2)),
             }),
             PrimKind::Light { color } => Material::Emitter(Emitter {
                 color: rgb(color),

@@ -201,6 +201,16 @@ def cases():
         irradiance_points(rng, 40, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
     )
     case("glass-hit-irradiance", "glass.rad", ["-i"], glass_view[:25], "-ov")
+    die_view = box_rays(rng, 60, [-3, -3, .5], [3, 3, 3.5], toward=[0, -.5, .6], spread=2)
+    # A positive -lr: rays inside the ball fall below -lw, where rtrace would otherwise
+    # play (random) Russian roulette.
+    case("dielectric-view", "dielectric.rad", ["-lr", "12", "-av", ".1", ".1", ".1"], die_view, "-ovrRxXlL")
+    case(
+        "dielectric-irradiance",
+        "dielectric.rad",
+        ["-I"],
+        irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
+    )
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

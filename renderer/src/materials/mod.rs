@@ -1,6 +1,7 @@
 //! Materials: what a ray sees where it hits. Each file reproduces one of Radiance's
 //! shading routines; `Material` is the closed set the renderer models so far.
 
+pub mod dielectric;
 pub mod glass;
 pub mod light;
 pub mod metal;
@@ -20,6 +21,8 @@ pub enum Material {
     Normal(plastic::Normal),
     Mirror(mirror::Mirror),
     Glass(glass::Glass),
+    /// `dielectric` and `interface`.
+    Dielectric(dielectric::Dielectric),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
 }
@@ -39,7 +42,7 @@ impl Material {
     pub fn is_transparent(&self) -> bool {
         match self {
             Material::Normal(n) => n.is_transparent(),
-            Material::Glass(_) => true,
+            Material::Glass(_) | Material::Dielectric(_) => true,
             _ => false,
         }
     }
@@ -49,6 +52,7 @@ impl Material {
             Material::Normal(n) => n.color,
             Material::Mirror(m) => m.color,
             Material::Glass(g) => g.transmission,
+            Material::Dielectric(d) => d.inside,
             Material::Emitter(e) => e.color,
         }
     }
