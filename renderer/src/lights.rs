@@ -25,6 +25,13 @@ pub enum SourceShape {
         /// A disk: samples are pulled in toward the rim's circle.
         circular: bool,
     },
+    /// A cylinder: `half_axis` spans half its length from `center`; sampled along the
+    /// axis, seen with its projected area `2 r l`.
+    Cylinder {
+        center: Vec3,
+        half_axis: Vec3,
+        radius: f64,
+    },
     /// A distant `source`: a unit direction and its solid angle.
     Distant { direction: Vec3, solid_angle: f64 },
 }
@@ -97,6 +104,14 @@ impl SourceShape {
         }
     }
 
+    pub fn cylinder(p0: Vec3, p1: Vec3, radius: f64) -> SourceShape {
+        SourceShape::Cylinder {
+            center: 0.5 * (p0 + p1),
+            half_axis: 0.5 * (p1 - p0),
+            radius,
+        }
+    }
+
     pub fn disk(center: Vec3, normal: Vec3, radius: f64) -> SourceShape {
         let area = std::f64::consts::PI * radius * radius;
         let (u, v) = square_extents(normal, area);
@@ -136,6 +151,9 @@ impl SourceShape {
                 direction,
                 solid_angle,
             } => (*direction, (solid_angle / std::f64::consts::PI).sqrt()),
+            SourceShape::Cylinder {
+                center, half_axis, ..
+            } => (*center, half_axis.length()),
         }
     }
 }
@@ -198,6 +216,16 @@ impl Source {
                     return; // behind a flat source
                 }
                 flat_parts(org, *center, *u, *v, weight, size_ratio)
+            }
+            SourceShape::Cylinder {
+                center,
+                half_axis,
+                radius,
+            } if size_ratio > FTINY => {
+                match cylinder_parts(org, *center, *half_axis, *radius, weight, size_ratio) {
+                    Some(parts) => parts,
+                    None => return, // inside the cylinder's extent
+                }
             }
             _ => vec![Part {
                 cent: [0; 3],
@@ -284,6 +312,32 @@ impl Source {
                     dist: d,
                 })
             }
+            SourceShape::Cylinder {
+                center,
+                half_axis,
+                radius,
+            } => {
+                let mut dir = *center + *half_axis * vpos[0] - org;
+                let d = normalize(&mut dir);
+                if d == 0.0 {
+                    return None;
+                }
+                // Cosine between the direction and the plane across the axis.
+                let along = dir.dot(*half_axis);
+                let dom = (1.0 - along * along / half_axis.length_squared())
+                    .max(0.0)
+                    .sqrt()
+                    * frac(0);
+                if dom <= 1e-4 {
+                    return None;
+                }
+                let area = 2.0 * radius * 2.0 * half_axis.length();
+                Some(SourceSample {
+                    dir,
+                    omega: dom * area / (d * d),
+                    dist: d,
+                })
+            }
             SourceShape::Distant {
                 direction,
                 solid_angle,
@@ -294,6 +348,63 @@ impl Source {
             }),
         }
     }
+}
+
+/// A cylinder source's partitions along its axis (`cylpart`): none for points within
+/// its extended radius (`None`), one for points very close to or far from it, else
+/// halvings while the point is nearer than `2 * weight / ds` half-lengths.
+fn cylinder_parts(
+    org: Vec3,
+    center: Vec3,
+    half_axis: Vec3,
+    radius: f64,
+    weight: f64,
+    ds: f64,
+) -> Option<Vec<Part>> {
+    // Radiance samples within a box around the cylinder: 0.8559 r is its half-width.
+    let rad2 = 1.365 * (0.8559 * radius).powi(2);
+    let v = org - center;
+    let axial = v.dot(half_axis);
+    let len2 = half_axis.length_squared();
+    let dist2_center = v.length_squared();
+    let radial2 = dist2_center - axial * axial / len2;
+    if radial2 <= rad2 {
+        return None;
+    }
+    let safe2 = len2 * 4.0 * weight * weight / (ds * ds);
+    let root = Part {
+        cent: [0; 3],
+        size: [MAXSPART; 3],
+    };
+    if radial2 <= 4.0 * rad2 || dist2_center >= safe2 {
+        return Some(vec![root]);
+    }
+    let mut out = Vec::new();
+    split_cylinder(&mut out, org, root, MAXSPART, center, half_axis, safe2);
+    Some(out)
+}
+
+fn split_cylinder(
+    out: &mut Vec<Part>,
+    org: Vec3,
+    part: Part,
+    mp: i32,
+    center: Vec3,
+    axis: Vec3,
+    d2: f64,
+) {
+    if mp < 2 || org.distance_squared(center) >= d2 {
+        out.push(part);
+        return;
+    }
+    let half = 0.5 * axis;
+    let mut lower = part;
+    lower.size[0] >>= 1;
+    let mut upper = lower;
+    lower.cent[0] -= lower.size[0];
+    upper.cent[0] += upper.size[0];
+    split_cylinder(out, org, lower, mp / 2, center - half, half, d2 * 0.25);
+    split_cylinder(out, org, upper, mp / 2, center + half, half, d2 * 0.25);
 }
 
 /// Recursive halving of a flat source (`flt_partit`): split the longer side while the

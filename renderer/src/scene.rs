@@ -17,6 +17,8 @@ use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 /// A surface.
 #[derive(Clone, Debug)]
 pub struct Object {
+    /// The primitive this object was compiled from.
+    pub prim: PrimId,
     pub name: String,
     pub shape: Shape,
     pub material: Option<MaterialId>,
@@ -90,8 +92,17 @@ impl Scene {
         if !c.problems.is_empty() {
             return Err(c.problems);
         }
+        let (sources, illegal) = find_sources(&c.scene);
+        for i in illegal {
+            if let Some(prim) = c.scene.objects.get(i).map(|o| o.prim) {
+                c.unsupported(prim, "Radiance cannot use this shape as a light source");
+            }
+        }
+        if !c.problems.is_empty() {
+            return Err(c.problems);
+        }
         let mut scene = c.scene;
-        scene.sources = find_sources(&scene);
+        scene.sources = sources;
         let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
         scene.bvh = Bvh::build(&bounds);
         Ok(scene)
@@ -165,6 +176,7 @@ impl Compiler<'_> {
         let Some(shape) = shape else { return };
         let (material, material_name) = self.material_of(p.modifier);
         self.scene.objects.push(Object {
+            prim: id,
             name: p.name.clone(),
             shape,
             material,
@@ -366,8 +378,10 @@ impl Compiler<'_> {
 }
 
 /// Radiance's `marksources`: every surface whose material emits becomes a source,
-/// except glows with no radius of influence.
-fn find_sources(scene: &Scene) -> Vec<Source> {
+/// except glows with no radius of influence. Also returns the objects Radiance refuses
+/// as sources (cones, cups, tubes, rings with a hole: "illegal material").
+fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
+    let mut illegal = Vec::new();
     let emitter = |m: Option<MaterialId>| match m.and_then(|m| scene.material(m)) {
         Some(Material::Emitter(e)) if e.is_source() => Some(e.clone()),
         _ => None,
@@ -389,9 +403,13 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
             Shape::Sphere(s) => SourceShape::sphere(s.center, s.radius),
             Shape::Polygon(p) => SourceShape::polygon(&p.vertices, p.normal, p.area),
             Shape::Ring(r) if r.r0 <= 0.0 => SourceShape::disk(r.center, r.normal, r.r1),
-            // Radiance refuses these as sources ("illegal material"); cylinders it
-            // samples along their length, which radc does not yet.
-            _ => continue,
+            Shape::Cone(c) if c.is_cylinder() && !c.inward => {
+                SourceShape::cylinder(c.p0, c.p1(), c.r0)
+            }
+            _ => {
+                illegal.push(i);
+                continue;
+            }
         };
         // A flat spotlight aimed behind itself is skipped (with a warning in Radiance).
         if let (Some(s), SourceShape::Flat { normal, .. }) = (spot(&e), &shape)
@@ -424,5 +442,5 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
             target: SourceTarget::Distant(i as u32),
         });
     }
-    out
+    (out, illegal)
 }

@@ -211,6 +211,12 @@ def cases():
         ["-I"],
         irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
     )
+    tube_pts = irradiance_points(rng, 30, [-1.4, -.9, .8], [1.4, .9, .8], [(0, 0, 1), (.3, 0, .95)])
+    tube_pts += irradiance_points(rng, 20, [-4, -4, 0], [4, 4, 0], [(0, 0, 1)])
+    tube_pts += [[0, 0, 1.9, 0, 0, 1], [0, .05, 2, 0, 1, 0], [1.5, 0, 2, -1, 0, 0], [0, 0, 1.2, 0, 0, 1]]
+    case("tube_lamp-irradiance", "tube_lamp.rad", ["-I"], tube_pts)
+    case("tube_lamp-irradiance-ds05", "tube_lamp.rad", ["-I", "-ds", ".05"], tube_pts)
+    case("tube_lamp-view", "tube_lamp.rad", [], box_rays(rng, 30, [-2, -2, 1], [2, 2, 3], toward=[0, 0, .8], spread=1.5), "-ovL")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

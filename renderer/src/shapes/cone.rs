@@ -40,6 +40,15 @@ impl Cone {
         })
     }
 
+    /// Equal radii: a cylinder (or tube).
+    pub fn is_cylinder(&self) -> bool {
+        (self.r0 - self.r1).abs() <= FTINY
+    }
+
+    pub fn p1(&self) -> Vec3 {
+        self.p1
+    }
+
     pub fn intersect(&self, ray: &Ray, _tmax: f64) -> Option<ShapeHit> {
         let k = (self.r1 - self.r0) / self.length;
         let w = ray.org - self.p0;
