@@ -391,7 +391,7 @@ impl<'a> Tracer<'a> {
         let mut best: Option<Candidate> = None;
         self.scene.bvh.traverse(ray, f64::INFINITY, |i| {
             if let Some(o) = self.scene.object(i)
-                && let Some(h) = o.shape.intersect(ray, best.map_or(f64::INFINITY, |b| b.t))
+                && let Some(h) = o.shape.intersect(ray)
             {
                 let cand = Candidate {
                     object: i,
@@ -551,9 +551,7 @@ impl<'a> Tracer<'a> {
         match s.target {
             SourceTarget::Object(o) => {
                 let obj = self.scene.object(o)?;
-                let h = obj
-                    .shape
-                    .intersect(&Ray::new(sr.org, sr.dir), f64::INFINITY)?;
+                let h = obj.shape.intersect(&Ray::new(sr.org, sr.dir))?;
                 probe.hit = Target::Object(ObjectId(o));
                 probe.length = h.t;
                 probe.point = sr.org + sr.dir * h.t;

@@ -51,7 +51,7 @@ proptest! {
         let mut d = dir;
         radc_renderer::math::normalize(&mut d);
         let ray = Ray::new(org, d);
-        if let Some(h) = s.intersect(&ray, f64::INFINITY) {
+        if let Some(h) = s.intersect(&ray) {
             prop_assert!(h.t > FTINY);
         }
         let _ = s.bounds();
@@ -66,7 +66,7 @@ proptest! {
         radc_renderer::math::normalize(&mut d);
         let ray = Ray::new(org, d);
         bvh.traverse(&ray, f64::INFINITY, |i| {
-            let _ = shapes[i as usize].intersect(&ray, f64::INFINITY);
+            let _ = shapes[i as usize].intersect(&ray);
             f64::INFINITY
         });
     }
@@ -96,12 +96,12 @@ fn bvh_finds_what_brute_force_finds() {
         );
         let brute = shapes
             .iter()
-            .filter_map(|s| s.intersect(&ray, f64::INFINITY))
+            .filter_map(|s| s.intersect(&ray))
             .map(|h| h.t)
             .fold(f64::INFINITY, f64::min);
         let mut best = f64::INFINITY;
         bvh.traverse(&ray, f64::INFINITY, |i| {
-            if let Some(h) = shapes[i as usize].intersect(&ray, best) {
+            if let Some(h) = shapes[i as usize].intersect(&ray) {
                 best = best.min(h.t);
             }
             best
