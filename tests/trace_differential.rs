@@ -228,3 +228,31 @@ fn zero_direction_prints_an_empty_record() {
     );
     assert_eq!(lines[0], lines[2]);
 }
+
+/// `-fac` with `-x -y` writes a Radiance picture (rtrace's way of rendering from
+/// `vwrays`), stopping after x * y rays; its pixels are the `-ov` values.
+#[test]
+fn color_output_with_resolution_is_a_picture() {
+    let scene = data().join("scenes/sphere_lamp.rad");
+    let scene = scene.to_str().expect("path");
+    let rays: String = (0..12)
+        .map(|i| format!("{} 0 1 0 0 -1\n", f64::from(i) * 0.3 - 1.5))
+        .collect();
+    let out = run_raw(&["-fac", "-x", "10", "-y", "1", scene], rays.as_bytes());
+    assert!(out.status.success());
+    let (w, h, pixels) = radc_renderer::picture::read(&out.stdout).expect("a picture");
+    assert_eq!((w, h, pixels.len()), (10, 1, 10));
+    let text = run_raw(&["-h", "-ov", scene], rays.as_bytes());
+    let values: Vec<f64> = String::from_utf8_lossy(&text.stdout)
+        .split_whitespace()
+        .map(|w| w.parse().expect("number"))
+        .collect();
+    for (i, p) in pixels.iter().enumerate() {
+        let got = radc_renderer::picture::from_rgbe(*p);
+        let want = values[3 * i];
+        assert!(
+            (got.x - want).abs() <= want / 100.0 + 1e-9,
+            "pixel {i}: {got:?} vs {want}"
+        );
+    }
+}

@@ -12,7 +12,7 @@ use std::process::ExitCode;
 
 use radc_lang::Severity;
 use radc_renderer::math::{Vec3, normalize};
-use radc_renderer::{Options, RayState, Scene, Target, Tracer};
+use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
@@ -29,6 +29,8 @@ enum Format {
     Ascii,
     Float,
     Double,
+    /// Output only: RGBE pixels (`-fac`, `-ffc`), with `-x -y` a picture.
+    Color,
 }
 
 impl Format {
@@ -37,6 +39,7 @@ impl Format {
             'a' => Some(Format::Ascii),
             'f' => Some(Format::Float),
             'd' => Some(Format::Double),
+            'c' => Some(Format::Color),
             _ => None,
         }
     }
@@ -46,6 +49,7 @@ impl Format {
             Format::Ascii => "ascii",
             Format::Float => "float",
             Format::Double => "double",
+            Format::Color => "32-bit_rle_rgbe",
         }
     }
 }
@@ -126,6 +130,9 @@ struct Args {
     output: Format,
     options: Options,
     scenes: Vec<PathBuf>,
+    /// `-x`, `-y`: a resolution line after the header, and the number of rays to read.
+    x_res: u32,
+    y_res: u32,
 }
 
 /// Radiance's boolean switches: `-x` toggles, `-x+` sets, `-x-` clears.
@@ -148,6 +155,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         output: Format::Ascii,
         options: Options::default(),
         scenes: Vec::new(),
+        x_res: 0,
+        y_res: 0,
     };
     let mut it = args.iter().map(String::as_str).peekable();
     let mut warn_off = false;
@@ -156,8 +165,21 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             s if switch(s, "-h", &mut a.header) => {}
             s if switch(s, "-I", &mut a.irradiance) => {}
             s if switch(s, "-w", &mut warn_off) => {}
-            "-n" | "-x" | "-y" => {
+            "-n" => {
                 number(&mut it, arg)?;
+            }
+            "-x" | "-y" => {
+                let v = number(&mut it, arg)?;
+                let v = if (0.0..=f64::from(u32::MAX)).contains(&v) {
+                    v as u32
+                } else {
+                    0
+                };
+                if arg == "-x" {
+                    a.x_res = v;
+                } else {
+                    a.y_res = v;
+                }
             }
             s if switch(s, "-i", &mut a.options.irradiance_at_hits) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
@@ -275,12 +297,29 @@ fn run_parsed(args: &[String]) -> ExitCode {
             a.output.name()
         );
     }
+    if a.x_res > 0 && a.y_res > 0 {
+        let _ = writeln!(out, "-Y {} +X {}", a.y_res, a.x_res);
+    }
+    // With -y, rtrace stops after a picture's worth of rays.
+    let mut remaining: Option<u64> = match (a.x_res, a.y_res) {
+        (_, 0) => None,
+        (x, y) if x > 1 => Some(u64::from(x) * u64::from(y)),
+        (_, y) => Some(u64::from(y)),
+    };
     let tracer = Tracer::new(&scene, a.options.clone());
     let stdin = std::io::stdin();
     let mut input = RayReader::new(BufReader::new(stdin.lock()), a.input);
     let mut last = (Vec3::ZERO, Vec3::ZERO);
     loop {
-        let (batch, flush, done) = input.batch(BATCH);
+        let want = remaining.map_or(BATCH, |n| (n as usize).min(BATCH));
+        if want == 0 {
+            break;
+        }
+        let (batch, flush, mut done) = input.batch(want);
+        if let Some(n) = remaining.as_mut() {
+            *n -= (batch.len() + usize::from(flush)) as u64;
+            done |= *n == 0;
+        }
         let results: Vec<RayState> = batch
             .par_iter()
             .map(|&(org, dir)| evaluate(&tracer, org, dir, a.irradiance))
@@ -394,6 +433,8 @@ impl<R: BufRead> RayReader<R> {
             return None;
         }
         let r = match self.format {
+            // Refused by the option parser: nothing to read.
+            Format::Color => None,
             Format::Ascii => self.next_word(),
             Format::Float => {
                 let mut b = [0u8; 4];
@@ -529,6 +570,10 @@ fn put(out: &mut impl Write, f: Format, v: &[f64]) {
             .iter()
             .try_for_each(|x| out.write_all(&(*x as f32).to_ne_bytes())),
         Format::Double => v.iter().try_for_each(|x| out.write_all(&x.to_ne_bytes())),
+        Format::Color => match v {
+            [r, g, b] => out.write_all(&picture::rgbe(Vec3::new(*r, *g, *b))),
+            _ => Ok(()),
+        },
     };
 }
 
