@@ -24,6 +24,8 @@ pub enum SourceShape {
         v: Vec3,
         /// A disk: samples are pulled in toward the rim's circle.
         circular: bool,
+        /// Distance from the centre to the farthest point (`srad`).
+        radius: f64,
     },
     /// A cylinder: `half_axis` spans half its length from `center`; sampled along the
     /// axis, seen with its projected area `2 r l`.
@@ -101,6 +103,10 @@ impl SourceShape {
             u,
             v,
             circular: false,
+            radius: vertices
+                .iter()
+                .map(|p| p.distance(center))
+                .fold(0.0, f64::max),
         }
     }
 
@@ -122,6 +128,7 @@ impl SourceShape {
             u,
             v,
             circular: true,
+            radius,
         }
     }
 
@@ -144,9 +151,7 @@ impl SourceShape {
     fn center_radius(&self) -> (Vec3, f64) {
         match self {
             SourceShape::Sphere { center, radius } => (*center, *radius),
-            SourceShape::Flat { center, u, v, .. } => {
-                (*center, (*u + *v).length().max((*u - *v).length()))
-            }
+            SourceShape::Flat { center, radius, .. } => (*center, *radius),
             SourceShape::Distant {
                 direction,
                 solid_angle,
@@ -287,6 +292,7 @@ impl Source {
                 u,
                 v,
                 circular,
+                ..
             } => {
                 if *circular && np > 1 {
                     // Pull corner samples in toward the circle (srcsamp.c's trim for SCIR).
