@@ -59,6 +59,9 @@ pub struct Options {
     pub backface_visible: bool,
     /// `-i`: primary rays report the irradiance at the opaque surfaces they hit.
     pub irradiance_at_hits: bool,
+    /// `-dr`: relays of light through mirrors (virtual sources; apply with
+    /// `Scene::add_virtual_sources`).
+    pub relays: u32,
 }
 
 impl Default for Options {
@@ -72,6 +75,7 @@ impl Default for Options {
             specular_threshold: 0.15,
             backface_visible: true,
             irradiance_at_hits: false,
+            relays: 2,
         }
     }
 }
@@ -522,15 +526,29 @@ impl<'a> Tracer<'a> {
         sr.dir = dir;
         sr.source = Some(si);
         sr.coef = c;
-        // The source's own value, from the source surface alone (`srcvalue`).
-        let value = self.source_value(&sr, si)? * c;
+        let source = self.scene.sources.get(si)?;
+        let value = if source.parent.is_some() {
+            // A virtual source: the ray must meet its mirror; the path through the mirror
+            // to the source it images is then always followed (Radiance follows it
+            // unless a pretest found it clear, which gives the same value).
+            let SourceTarget::Object(mirror) = source.target else {
+                return None;
+            };
+            self.scene
+                .object(mirror)?
+                .shape
+                .intersect(&Ray::new(sr.org, sr.dir))?;
+            None
+        } else {
+            // The source's own value, from the source surface alone (`srcvalue`).
+            Some(self.source_value(&sr, si)? * c)
+        };
         match self.nearest(&Ray::new(sr.org, sr.dir)) {
-            None => Some(value),
-            Some(h) if self.scene.sources[si].target == SourceTarget::Object(h.object) => {
-                Some(value)
-            }
+            None => value,
+            Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {
-                // Something else is in the way: shade it as a shadow ray would see it.
+                // Something is in the way (or a mirror to follow): shade it as a shadow
+                // ray would see it.
                 sr.hit = Target::Object(ObjectId(h.object));
                 sr.length = h.t;
                 sr.point = sr.org + sr.dir * h.t;

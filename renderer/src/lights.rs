@@ -46,8 +46,14 @@ pub struct Source {
     pub proximity: Option<f64>,
     /// `spotlight` sources only light points inside their cone.
     pub spot: Option<Spot>,
-    /// The surface this source is: local object index or distant-source index.
+    /// The surface this source is: local object index or distant-source index (for a
+    /// virtual source, the mirror).
     pub target: SourceTarget,
+    /// A virtual source: the image of source `parent` in the mirror `target`.
+    pub parent: Option<usize>,
+    /// A distant virtual source only lights points whose shadow rays pass within the
+    /// mirror's disk: its centre and area (Radiance's distant `spotout`).
+    pub beam: Option<(Vec3, f64)>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -148,7 +154,7 @@ impl SourceShape {
     }
 
     /// The centre and bounding radius (for `glow` proximity).
-    fn center_radius(&self) -> (Vec3, f64) {
+    pub(crate) fn center_radius(&self) -> (Vec3, f64) {
         match self {
             SourceShape::Sphere { center, radius } => (*center, *radius),
             SourceShape::Flat { center, radius, .. } => (*center, *radius),
@@ -248,6 +254,15 @@ impl Source {
                 && local
             {
                 continue;
+            }
+            if let Some((center, area)) = self.beam
+                && !local
+            {
+                let to = center - org;
+                let along = s.dir.dot(to);
+                if std::f64::consts::PI * (to.length_squared() - along * along) > area {
+                    continue;
+                }
             }
             if let Some(spot) = &self.spot
                 && local
@@ -482,6 +497,8 @@ mod tests {
             proximity: None,
             spot: None,
             target: SourceTarget::Object(0),
+            parent: None,
+            beam: None,
         }
     }
 

@@ -422,6 +422,8 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
             proximity: proximity(&e),
             spot: spot(&e),
             target: SourceTarget::Object(i as u32),
+            parent: None,
+            beam: None,
         });
     }
     for (i, d) in scene.distant.iter().enumerate() {
@@ -440,6 +442,8 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
             proximity: None,
             spot: None,
             target: SourceTarget::Distant(i as u32),
+            parent: None,
+            beam: None,
         });
     }
     (out, illegal)

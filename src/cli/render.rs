@@ -45,6 +45,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         options: Options {
             source_size_ratio: 0.25,
             max_depth: 7,
+            relays: 1,
             ..Options::default()
         },
         output: None,
@@ -116,10 +117,11 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let scene = match load_scene(&a.scenes, "render") {
+    let mut scene = match load_scene(&a.scenes, "render") {
         Ok(s) => s,
         Err(code) => return code,
     };
+    scene.add_virtual_sources(a.options.relays);
     let (w, h) = camera.fit_resolution(a.x, a.y, a.pixel_aspect);
     let (w, h) = (w.max(1), h.max(1));
     let tracer = Tracer::new(&scene, a.options.clone());

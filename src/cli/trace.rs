@@ -3,8 +3,8 @@
 //! one ray per line; or binary `-ff`/`-fd`). Takes rtrace's options; the ones radc does
 //! not model yet are refused rather than silently ignored.
 //!
-//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`), no virtual
-//! sources (`-dr 0`) and no source jitter (`-dj 0`).
+//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`) and no source
+//! jitter (`-dj 0`); light relayed by mirrors (`-dr`) goes through one mirror at most.
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
@@ -255,9 +255,10 @@ pub(super) fn render_option<'a>(
         "-lr" => o.max_depth = number(it, "-lr")? as i32,
         "-lw" => o.min_weight = number(it, "-lw")?,
         "-st" => o.specular_threshold = number(it, "-st")?,
-        // Accepted for compatibility: radc tests every shadow (-dt 0), has no virtual
-        // sources (-dr 0), and the rest only matter for indirect light.
-        "-dt" | "-dc" | "-dr" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
+        // Accepted for compatibility: radc tests every shadow (-dt 0), always follows
+        // relayed paths (-dp), and the rest only matter for indirect light.
+        "-dr" => o.relays = number(it, "-dr")?.max(0.0) as u32,
+        "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
             number(it, arg)?;
         }
         s if s.starts_with("-u") || s.starts_with("-dv") => {}
@@ -281,10 +282,11 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let scene = match load_scene(&a.scenes, "trace") {
+    let mut scene = match load_scene(&a.scenes, "trace") {
         Ok(s) => s,
         Err(code) => return code,
     };
+    scene.add_virtual_sources(a.options.relays);
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     if a.header {

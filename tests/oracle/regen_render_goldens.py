@@ -30,6 +30,7 @@ CASES = [
     # (rpict draws light sources smaller than a pixel with their coverage, "srcdraw";
     # radc does not yet, so no view here shows one.)
     ("emitters", "emitters.rad", "-vp -3 3 1.8 -vd 1 -1 -.3 -vh 70 -vv 50 -x 40 -y 40", ""),
+    ("emitters-relay", "emitters.rad", "-vp 2 0 1.2 -vd -1 0 -.4 -vh 40 -vv 40 -x 40 -y 40", "-dr 1"),
 ]
 
 
@@ -50,7 +51,7 @@ def pixels(path):
 
 def main():
     check = "--check" in sys.argv[1:]
-    manifest = [{"id": c[0], "scene": c[1], "options": c[2].split() + c[3].split()} for c in CASES]
+    manifest = [{"id": c[0], "scene": c[1], "options": DETERMINISTIC + c[2].split() + c[3].split()} for c in CASES]
     failed = []
     with tempfile.TemporaryDirectory() as tmp:
         for case in CASES:

@@ -6,8 +6,8 @@ answers (tests/data/trace/<id>.out), plus tests/data/trace/cases.json listing ev
 case. tests/trace_differential.rs runs `radc trace` on the same rays and compares.
 
 Options: every case runs rtrace deterministically: no ambient bounces (-ab 0), no
-source jitter (-dj 0), every shadow tested (-dt 0), no virtual sources (-dr 0), and no
-randomized source orientation (-u-).
+source jitter (-dj 0), every shadow tested (-dt 0), no randomized source orientation
+(-u-), and no virtual sources (-dr 0) unless a case asks for relays through mirrors.
 
     python tests/oracle/regen_trace_goldens.py           # rewrite the goldens
     python tests/oracle/regen_trace_goldens.py --check   # fail if any would change
@@ -217,6 +217,12 @@ def cases():
     case("tube_lamp-irradiance", "tube_lamp.rad", ["-I"], tube_pts)
     case("tube_lamp-irradiance-ds05", "tube_lamp.rad", ["-I", "-ds", ".05"], tube_pts)
     case("tube_lamp-view", "tube_lamp.rad", [], box_rays(rng, 30, [-2, -2, 1], [2, 2, 3], toward=[0, 0, .8], spread=1.5), "-ovL")
+    # light relayed by mirrors (virtual sources): one mirror, and two facing mirrors
+    case("emitters-relay", "emitters.rad", ["-I", "-dr", "2"],
+         irradiance_points(rng, 40, [-3.8, -3, 0], [0, 3, 1.5], [(0, 0, 1), (-1, 0, 0), (-.6, .3, .7)]))
+    case("emitters-relay-view", "emitters.rad", ["-dr", "1"], em_view, "-ovL")
+    relay_pts = irradiance_points(rng, 40, [3.5, -1.5, 0], [4.45, 1.5, 2.5], [(1, 0, 0), (.5, 0, .8), (0, 0, 1)])
+    case("hard-relay", "hard.rad", ["-I", "-dr", "2"], relay_pts)
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
