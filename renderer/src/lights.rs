@@ -54,6 +54,8 @@ pub struct Source {
     /// A distant virtual source only lights points whose shadow rays pass within the
     /// mirror's disk: its centre and area (Radiance's distant `spotout`).
     pub beam: Option<(Vec3, f64)>,
+    /// Radiance's sampling vectors (`ss`), carried through mirror images.
+    pub axes: [Vec3; 3],
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -499,6 +501,7 @@ mod tests {
             target: SourceTarget::Object(0),
             parent: None,
             beam: None,
+            axes: [Vec3::ZERO; 3],
         }
     }
 

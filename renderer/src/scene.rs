@@ -418,6 +418,7 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
             continue;
         }
         out.push(Source {
+            axes: crate::virtuals::radiance_axes(&shape),
             shape,
             proximity: proximity(&e),
             spot: spot(&e),
@@ -434,11 +435,13 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
         if matches!(e.kind, EmitterKind::Glow { .. }) {
             continue;
         }
+        let shape = SourceShape::Distant {
+            direction: d.direction,
+            solid_angle: d.solid_angle,
+        };
         out.push(Source {
-            shape: SourceShape::Distant {
-                direction: d.direction,
-                solid_angle: d.solid_angle,
-            },
+            axes: crate::virtuals::radiance_axes(&shape),
+            shape,
             proximity: None,
             spot: None,
             target: SourceTarget::Distant(i as u32),

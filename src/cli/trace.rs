@@ -4,7 +4,7 @@
 //! not model yet are refused rather than silently ignored.
 //!
 //! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`) and no source
-//! jitter (`-dj 0`); light relayed by mirrors (`-dr`) goes through one mirror at most.
+//! jitter (`-dj 0`); light relayed by mirrors (`-dr`) is included.
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;

@@ -223,6 +223,12 @@ def cases():
     case("emitters-relay-view", "emitters.rad", ["-dr", "1"], em_view, "-ovL")
     relay_pts = irradiance_points(rng, 40, [3.5, -1.5, 0], [4.45, 1.5, 2.5], [(1, 0, 0), (.5, 0, .8), (0, 0, 1)])
     case("hard-relay", "hard.rad", ["-I", "-dr", "2"], relay_pts)
+    case("hard-relay-dr3", "hard.rad", ["-I", "-dr", "3"], relay_pts)
+    mirror_pts = irradiance_points(rng, 50, [-3.5, -3.5, 0], [3.5, 3.5, 0], [(0, 0, 1)])
+    mirror_pts += irradiance_points(rng, 20, [-1, .9, .2], [1, .9, 1.4], [(0, -1, 0)])
+    for dr in ("0", "1", "2", "3"):
+        case("mirrors-relay-dr" + dr, "mirrors.rad", ["-I", "-dr", dr], mirror_pts)
+    case("mirrors-view", "mirrors.rad", ["-dr", "2"], box_rays(rng, 40, [-2, -2, .5], [2, 2, 2]), "-ovL")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
