@@ -109,6 +109,38 @@ impl View {
 }
 
 impl Camera {
+    pub fn projection(&self) -> Projection {
+        self.view.projection
+    }
+
+    pub fn position(&self) -> Vec3 {
+        self.view.position
+    }
+
+    /// Where a world point appears in the image (`viewloc`), or `None` unless it is in
+    /// front of the view and strictly inside the frame.
+    pub fn project(&self, p: Vec3) -> Option<(f64, f64)> {
+        let mut disp = p - self.view.position;
+        let (hn2, vn2) = (self.hvec.length_squared(), self.vvec.length_squared());
+        match self.view.projection {
+            Projection::Perspective => {
+                let d = disp.dot(self.dir);
+                if d <= FTINY {
+                    return None; // behind, or at the edge of infinity
+                }
+                disp /= d;
+            }
+            Projection::Parallel => {
+                if disp.dot(self.dir) < 0.0 {
+                    return None;
+                }
+            }
+        }
+        let x = disp.dot(self.hvec) / hn2 + 0.5;
+        let y = disp.dot(self.vvec) / vn2 + 0.5;
+        (x > 0.0 && x < 1.0 && y > 0.0 && y < 1.0).then_some((x, y))
+    }
+
     /// Height over width of the image plane (`viewaspect`).
     pub fn aspect(&self) -> f64 {
         self.vvec.length() / self.hvec.length()

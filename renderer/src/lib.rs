@@ -11,6 +11,7 @@ pub mod picture;
 pub mod ray;
 pub mod scene;
 pub mod shapes;
+pub mod small_sources;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};

@@ -140,6 +140,8 @@ fn run_parsed(args: &[String]) -> ExitCode {
             })
         })
         .collect();
+    let mut pixels = pixels;
+    radc_renderer::small_sources::draw(&tracer, &camera, w, h, 1.0, &mut pixels);
     let header = vec![
         format!("radc render {}", args.join(" ")),
         format!("SOFTWARE= radc {}", env!("CARGO_PKG_VERSION")),

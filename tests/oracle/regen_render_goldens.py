@@ -27,9 +27,12 @@ CASES = [
     ("room", "polygon_lamp.rad", "-vp 2.5 -2.5 1.5 -vd -1 1 -.3 -vu 0 0 1 -vh 60 -vv 45 -x 48 -y 48", "-av .1 .1 .1"),
     ("lamp", "sphere_lamp.rad", "-vp 3 -3 2.5 -vd -1 1 -.7 -vh 50 -vv 50 -x 40 -y 30", ""),
     ("round-parallel", "round.rad", "-vtl -vp 0 0 6 -vd 0 0 -1 -vu 0 1 0 -vh 8 -vv 8 -x 32 -y 32", "-av .02 .02 .02"),
-    # (rpict draws light sources smaller than a pixel with their coverage, "srcdraw";
-    # radc does not yet, so no view here shows one.)
     ("emitters", "emitters.rad", "-vp -3 3 1.8 -vd 1 -1 -.3 -vh 70 -vv 50 -x 40 -y 40", ""),
+    # light sources smaller than a pixel, which rpict draws by their coverage
+    ("small-glows", "emitters.rad", "-vp 3 3 1.8 -vd -1 -1 -.2 -vh 70 -vv 50 -x 40 -y 40", ""),
+    ("small-sun", "distant.rad", "-vp 0 -8 .3 -vd .3 .4 .866 -vu 0 0 1 -vh 20 -vv 20 -x 32 -y 32", ""),
+    ("small-lamp", "sphere_lamp.rad", "-vp 60 -60 20 -vd -1 1 -.25 -vh 8 -vv 8 -x 16 -y 16", ""),
+    ("small-mirrored", "mirrors.rad", "-vp 0 -40 1.5 -vd 0 1 0 -vh 12 -vv 8 -x 24 -y 16", "-dr 2"),
     ("emitters-relay", "emitters.rad", "-vp 2 0 1.2 -vd -1 0 -.4 -vh 40 -vv 40 -x 40 -y 40", "-dr 1"),
 ]
 
