@@ -124,6 +124,11 @@ fn run_parsed(args: &[String]) -> ExitCode {
     scene.add_virtual_sources(a.options.relays);
     let (w, h) = camera.fit_resolution(a.x, a.y, a.pixel_aspect);
     let (w, h) = (w.max(1), h.max(1));
+    // The picture is held in memory: refuse sizes that cannot be.
+    if u64::from(w) * u64::from(h) > 1 << 28 {
+        eprintln!("radc render: a {w} by {h} picture is too large");
+        return ExitCode::from(USAGE_ERROR);
+    }
     let tracer = Tracer::new(&scene, a.options.clone());
     // Top row first; pixel centres at ((i + .5) / w, (j + .5) / h) with j counted upward.
     let pixels: Vec<Color> = (0..h)
