@@ -25,6 +25,7 @@ struct Args {
     options: Options,
     output: Option<PathBuf>,
     scenes: Vec<PathBuf>,
+    warnings: bool,
 }
 
 fn vector<'a>(it: &mut impl Iterator<Item = &'a str>, what: &str) -> Result<Vec3, String> {
@@ -50,6 +51,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         },
         output: None,
         scenes: Vec::new(),
+        warnings: true,
     };
     let mut it = args.iter().map(String::as_str);
     while let Some(arg) = it.next() {
@@ -83,6 +85,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 number(&mut it, arg)?;
             }
             "-o" => a.output = Some(PathBuf::from(it.next().ok_or("-o needs a file name")?)),
+            s if super::trace::switch(s, "-w", &mut a.warnings) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
             "-help" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),
@@ -117,7 +120,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let mut scene = match load_scene(&a.scenes, "render") {
+    let mut scene = match load_scene(&a.scenes, "render", a.warnings) {
         Ok(s) => s,
         Err(code) => return code,
     };

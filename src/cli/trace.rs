@@ -133,6 +133,8 @@ struct Args {
     /// `-x`, `-y`: a resolution line after the header, and the number of rays to read.
     x_res: u32,
     y_res: u32,
+    /// `-w`: report the scene's warnings (errors are always reported).
+    warnings: bool,
 }
 
 /// Radiance's boolean switches: `-x` toggles, `-x+` sets, `-x-` clears.
@@ -157,14 +159,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         scenes: Vec::new(),
         x_res: 0,
         y_res: 0,
+        warnings: true,
     };
     let mut it = args.iter().map(String::as_str).peekable();
-    let mut warn_off = false;
     while let Some(arg) = it.next() {
         match arg {
             s if switch(s, "-h", &mut a.header) => {}
             s if switch(s, "-I", &mut a.irradiance) => {}
-            s if switch(s, "-w", &mut warn_off) => {}
+            s if switch(s, "-w", &mut a.warnings) => {}
             "-n" => {
                 number(&mut it, arg)?;
             }
@@ -282,7 +284,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let mut scene = match load_scene(&a.scenes, "trace") {
+    let mut scene = match load_scene(&a.scenes, "trace", a.warnings) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -356,13 +358,21 @@ fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, irradiance: bool) -> 
     }
 }
 
-/// Reads the scene files as one scene, reports their diagnostics on stderr, and
-/// compiles it; scenes with errors, or with things radc cannot render, are refused.
-pub(super) fn load_scene(paths: &[PathBuf], command: &str) -> Result<Scene, ExitCode> {
+/// Reads the scene files as one scene, reports their diagnostics on stderr (warnings
+/// only if asked), and compiles it; scenes with errors, or with things radc cannot
+/// render, are refused.
+pub(super) fn load_scene(
+    paths: &[PathBuf],
+    command: &str,
+    warnings: bool,
+) -> Result<Scene, ExitCode> {
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let ir = super::check::check_scene(paths, &mut sources, &mut diags);
     diags.sort_by_key(|d| (d.span.file, d.span.start));
+    if !warnings {
+        diags.retain(|d| d.severity == Severity::Error);
+    }
     report::eprint(&diags, &sources);
     if diags.iter().any(|d| d.severity == Severity::Error) {
         eprintln!("radc {command}: the scene has errors; nothing rendered");
