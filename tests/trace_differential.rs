@@ -194,10 +194,10 @@ fn refuses_bad_and_unsupported_scenes() {
     assert!(out.stdout.is_empty());
     assert!(String::from_utf8_lossy(&out.stderr).contains("E0202"));
 
-    let unsupported = dir.path().join("antimatter.rad");
+    let unsupported = dir.path().join("mist.rad");
     std::fs::write(
         &unsupported,
-        "void plastic p 0 0 5 .5 .5 .5 0 0\nvoid antimatter g 1 p 0 0\ng sphere s 0 0 4 0 0 0 1\n",
+        "void mist g 0 0 0\ng sphere s 0 0 4 0 0 0 1\n",
     )
     .expect("write");
     let out = run_raw(
@@ -205,7 +205,7 @@ fn refuses_bad_and_unsupported_scenes() {
         b"0 0 5 0 0 -1\n",
     );
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot render antimatter 'g'"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot render mist 'g'"));
 
     let out = run_raw(&["-ab", "2", bad.to_str().expect("path")], b"");
     assert_eq!(out.status.code(), Some(2));

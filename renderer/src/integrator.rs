@@ -119,6 +119,13 @@ pub struct RayState {
     pub other_length: f64,
     /// Extinction coefficient of the medium the ray travels in (inside a dielectric).
     pub extinction: Color,
+    /// Modifiers whose surfaces this ray passes through (inside `antimatter`), and the
+    /// set its transmitted continuations get (`clipset`, `newcset`).
+    pub clipset: Vec<i64>,
+    pub new_clipset: Option<Vec<i64>>,
+    /// For each transmitted link up the ray tree: the modifier of the surface passed
+    /// and whether it was entered from the front (antimatter's penetration count).
+    pub passages: Vec<(i64, bool)>,
 }
 
 impl RayState {
@@ -143,6 +150,9 @@ impl RayState {
             mirror_length: FHUGE,
             other_length: FHUGE,
             extinction: Color::ZERO,
+            clipset: Vec::new(),
+            new_clipset: None,
+            passages: Vec::new(),
         }
     }
 
@@ -283,14 +293,26 @@ impl<'a> Tracer<'a> {
             r.point = r.org + r.dir * c.t;
             r.normal = c.normal;
             r.rod = c.rod;
-            let material = self.scene.object(c.object).and_then(|o| o.material);
-            self.shade(r, material);
+            self.shade_object(r, c.object);
         } else if let Some(d) = self.distant_hit(r) {
             r.hit = Target::Distant(d);
             let material = self.scene.distant.get(d as usize).and_then(|o| o.material);
             self.shade(r, material);
         }
         participate(r);
+    }
+
+    /// Shades a surface hit (`raycont`): surfaces whose modifier the ray's antimatter set
+    /// holds are passed through.
+    fn shade_object(&self, r: &mut RayState, object: u32) {
+        let Some(o) = self.scene.object(object) else {
+            return;
+        };
+        if r.clipset.contains(&o.modifier) {
+            r.other_length = r.length;
+            return self.transmit(r);
+        }
+        self.shade(r, o.material);
     }
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
@@ -314,6 +336,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Mirror(m)) => m.shade(self, r),
             Some(Material::Glass(g)) => g.shade(self, r),
             Some(Material::Dielectric(d)) => d.shade(self, r),
+            Some(Material::Antimatter(a)) => a.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             None => self.transmit(r),
         }
@@ -357,6 +380,18 @@ impl<'a> Tracer<'a> {
         child.coef = coef.unwrap_or(Color::ONE);
         child.weight = r.weight * rw;
         child.extinction = r.extinction;
+        child.clipset = if kind.reflects() {
+            r.clipset.clone()
+        } else {
+            r.new_clipset.clone().unwrap_or_else(|| r.clipset.clone())
+        };
+        child.passages = r.passages.clone();
+        if !kind.reflects()
+            && let Target::Object(o) = r.hit
+            && let Some(obj) = self.scene.object(o.0)
+        {
+            child.passages.push((obj.modifier, r.rod > 0.0));
+        }
         // The parent's path through an absorbing medium weakens what follows it.
         let re = r.extinction.min_element() * r.length;
         if re > 0.1 {
@@ -554,8 +589,7 @@ impl<'a> Tracer<'a> {
                 sr.point = sr.org + sr.dir * h.t;
                 sr.normal = h.normal;
                 sr.rod = h.rod;
-                let material = self.scene.object(h.object).and_then(|o| o.material);
-                self.shade(&mut sr, material);
+                self.shade_object(&mut sr, h.object);
                 participate(&mut sr);
                 let mean = (sr.color.x + sr.color.y + sr.color.z) / 3.0;
                 (mean > FTINY).then(|| sr.color * c)

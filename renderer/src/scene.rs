@@ -6,6 +6,7 @@ use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
+use crate::materials::antimatter::Antimatter;
 use crate::materials::dielectric::Dielectric;
 use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
@@ -302,6 +303,25 @@ impl Compiler<'_> {
                 index: *n1 / *n2,
                 outside: Some(rgb(t2)),
             }),
+            PrimKind::Antimatter { modifiers } => {
+                let mut ids = Vec::new();
+                for name in modifiers.iter().filter(|n| n.as_str() != "void") {
+                    if let Some(m) = self.named_ref(kind, name) {
+                        ids.push(i64::from(m.0));
+                    }
+                }
+                let face = match modifiers.first().map(String::as_str) {
+                    None | Some("void") => None,
+                    Some(name) => Some(
+                        self.named_ref(kind, name)
+                            .and_then(|m| self.compile_material(m)),
+                    ),
+                };
+                Material::Antimatter(Antimatter {
+                    modifiers: ids,
+                    face,
+                })
+            }
             PrimKind::Light { color } => Material::Emitter(Emitter {
                 color: rgb(color),
                 kind: EmitterKind::Light,
@@ -355,6 +375,16 @@ impl Compiler<'_> {
             }
         }
         None
+    }
+
+    /// The modifier `name` in `owner`'s string arguments, as the front end resolved it.
+    fn named_ref(&self, owner: PrimId, name: &str) -> Option<PrimId> {
+        self.ir
+            .get(owner)?
+            .refs
+            .iter()
+            .copied()
+            .find(|r| self.ir.get(*r).is_some_and(|q| q.name == name))
     }
 
     fn alternate(&mut self, owner: PrimId, name: Option<&str>) -> Alternate {

@@ -229,6 +229,13 @@ def cases():
     for dr in ("0", "1", "2", "3"):
         case("mirrors-relay-dr" + dr, "mirrors.rad", ["-I", "-dr", dr], mirror_pts)
     case("mirrors-view", "mirrors.rad", ["-dr", "2"], box_rays(rng, 40, [-2, -2, .5], [2, 2, 2]), "-ovL")
+    anti_view = box_rays(rng, 40, [-1, -1, 3], [2, 2, 4], toward=[.5, .3, 1.2], spread=.9)
+    anti_view += box_rays(rng, 30, [-4.5, -4.5, 1], [-1.5, -1.5, 3], toward=[-3, -3, -.5], spread=.8)
+    anti_view += box_rays(rng, 20, [-3, -3, .5], [3, 3, 1.2], toward=[.5, .3, 1.75], spread=.3)
+    case("antimatter-view", "antimatter.rad", ["-av", ".05", ".05", ".05"], anti_view, "-ovLN")
+    anti_pts = irradiance_points(rng, 30, [-.5, -.7, 0], [1.5, 1.3, 0], [(0, 0, 1)])
+    anti_pts += irradiance_points(rng, 20, [-4, -4, -2], [-2, -2, -2], [(0, 0, 1)])
+    case("antimatter-irradiance", "antimatter.rad", ["-I"], anti_pts)
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

@@ -1,6 +1,7 @@
 //! Materials: what a ray sees where it hits. Each file reproduces one of Radiance's
 //! shading routines; `Material` is the closed set the renderer models so far.
 
+pub mod antimatter;
 pub mod dielectric;
 pub mod glass;
 pub mod light;
@@ -23,6 +24,7 @@ pub enum Material {
     Glass(glass::Glass),
     /// `dielectric` and `interface`.
     Dielectric(dielectric::Dielectric),
+    Antimatter(antimatter::Antimatter),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
 }
@@ -53,6 +55,7 @@ impl Material {
             Material::Mirror(m) => m.color,
             Material::Glass(g) => g.transmission,
             Material::Dielectric(d) => d.inside,
+            Material::Antimatter(_) => Color::ZERO,
             Material::Emitter(e) => e.color,
         }
     }
