@@ -73,6 +73,8 @@ enum Output {
     Modifier,
     Material,
     Tilde,
+    Weight,
+    LocalCoordinates,
 }
 
 impl Output {
@@ -99,9 +101,11 @@ impl Output {
                     'm' => Output::Modifier,
                     'M' => Output::Material,
                     '~' => Output::Tilde,
+                    'w' => Output::Weight,
+                    'c' => Output::LocalCoordinates,
                     _ => {
                         return Err(format!(
-                            "output '{c}' is not supported (radc knows v o d p n N l L r R x X s m M ~)"
+                            "output '{c}' is not supported (radc knows v o d p n N l L r R x X c w s m M ~)"
                         ));
                     }
                 })
@@ -116,6 +120,7 @@ impl Output {
             }
             Output::SurfaceNormal => 3,
             Output::Tilde => 0,
+            Output::LocalCoordinates => 2,
             _ => 1,
         }
     }
@@ -549,6 +554,9 @@ fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
             Output::Tilde => {
                 let _ = write!(out, "~\t");
             }
+            Output::Weight => put(out, a.output, &[r.weight]),
+            // Local (u, v) coordinates: zero for every surface but meshes in Radiance.
+            Output::LocalCoordinates => put(out, a.output, &[0.0, 0.0]),
         }
     }
     if a.output == Format::Ascii {

@@ -191,7 +191,7 @@ def cases():
     case("trans-hit-irradiance", "trans.rad", ["-i"], trans_view[:25], "-ov")
     refl = [[x + .5, .5, 1, 0, dy, dz] for x in (0, 2, 4, 6) for dy, dz in ((0, -1), (.5, -1), (3, -.5), (-1, -1))]
     refl += box_rays(rng, 30, [-1, -1, .5], [8, 2, 2], toward=[3.5, .5, 0], spread=3.5)
-    case("reflections-parts", "reflections.rad", ["-av", ".1", ".1", ".1"], refl, "-ovrRxXlL")
+    case("reflections-parts", "reflections.rad", ["-av", ".1", ".1", ".1"], refl, "-ovrRxXlLwc")
     glass_view = box_rays(rng, 50, [-3, -3, .5], [3, 3, 3.5], toward=[0, 0, 1], spread=2.5)
     case("glass-view", "glass.rad", ["-av", ".1", ".1", ".1"], glass_view, "-ovrRxXlL")
     case(
