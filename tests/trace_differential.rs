@@ -207,6 +207,21 @@ fn refuses_bad_and_unsupported_scenes() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("cannot render mist 'g'"));
 
+    // What a `!` command makes would be missing: refused rather than rendered wrong.
+    let command = dir.path().join("command.rad");
+    std::fs::write(
+        &command,
+        "void plastic p 0 0 5 .5 .5 .5 0 0\n!genbox p box 1 1 1\n",
+    )
+    .expect("write");
+    let out = run_raw(
+        &["-h", "-w", command.to_str().expect("path")],
+        b"0 0 5 0 0 -1\n",
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("'!' command"));
+
     let out = run_raw(&["-ab", "2", bad.to_str().expect("path")], b"");
     assert_eq!(out.status.code(), Some(2));
 }

@@ -375,12 +375,27 @@ pub(super) fn load_scene(
     let mut diags = Vec::new();
     let ir = super::check::check_scene(paths, &mut sources, &mut diags);
     diags.sort_by_key(|d| (d.span.file, d.span.start));
+    // A `!` command's output is part of the scene Radiance renders; without it the
+    // numbers would be silently wrong.
+    let unexpanded = diags
+        .iter()
+        .filter(|d| d.code.id == radc_lang::diagnostic::W0303.id)
+        .count();
     if !warnings {
-        diags.retain(|d| d.severity == Severity::Error);
+        diags.retain(|d| {
+            d.severity == Severity::Error || d.code.id == radc_lang::diagnostic::W0303.id
+        });
     }
     report::eprint(&diags, &sources);
     if diags.iter().any(|d| d.severity == Severity::Error) {
         eprintln!("radc {command}: the scene has errors; nothing rendered");
+        return Err(ExitCode::from(1));
+    }
+    if unexpanded > 0 {
+        eprintln!(
+            "radc {command}: the scene has {unexpanded} '!' command line(s) radc does not run, so \
+             it would render without what they make; run them and include their output"
+        );
         return Err(ExitCode::from(1));
     }
     Scene::compile(&ir).map_err(|problems| {
