@@ -325,7 +325,7 @@ impl<'a> Tracer<'a> {
         if self.options.irradiance_at_hits && primary {
             match material {
                 Some(m) if m.is_transparent() => return self.transmit(r),
-                Some(Material::Normal(_) | Material::Mirror(_)) => {
+                Some(Material::Normal(_) | Material::Mirror(_) | Material::Anisotropic(_)) => {
                     return LAMBERTIAN.shade(self, r);
                 }
                 _ => {}
@@ -337,6 +337,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Glass(g)) => g.shade(self, r),
             Some(Material::Dielectric(d)) => d.shade(self, r),
             Some(Material::Antimatter(a)) => a.shade(self, r),
+            Some(Material::Anisotropic(a)) => a.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             None => self.transmit(r),
         }

@@ -6,13 +6,14 @@ use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
+use crate::materials::anisotropic::Anisotropic;
 use crate::materials::antimatter::Antimatter;
 use crate::materials::dielectric::Dielectric;
 use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
-use crate::math::{Vec3, vec3};
+use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 
 /// A surface.
@@ -351,6 +352,41 @@ impl Compiler<'_> {
                 Material::Emitter(Emitter {
                     color: rgb(color),
                     kind: EmitterKind::Illum { alternate },
+                })
+            }
+            PrimKind::Other { strings, reals }
+                if matches!(p.schema.name, "plastic2" | "metal2" | "trans2") =>
+            {
+                let number = |i: usize| {
+                    strings
+                        .get(i)
+                        .and_then(|w| w.parse::<f64>().ok())
+                        .filter(|x| x.is_finite())
+                };
+                let (Some(ux), Some(uy), Some(uz)) = (number(0), number(1), number(2)) else {
+                    self.unsupported(
+                        kind,
+                        "orientation expressions are not evaluated yet (numbers are)",
+                    );
+                    return None;
+                };
+                if strings.len() > 4 {
+                    self.unsupported(kind, "transforms of the orientation are not applied yet");
+                    return None;
+                }
+                let real = |i: usize| reals.get(i).copied().unwrap_or(0.0);
+                if real(4) <= FTINY || real(5) <= FTINY {
+                    self.unsupported(kind, "roughness too small (Radiance refuses it)");
+                    return None;
+                }
+                Material::Anisotropic(Anisotropic {
+                    color: Vec3::new(real(0), real(1), real(2)),
+                    spec: real(3),
+                    u_rough: real(4),
+                    v_rough: real(5),
+                    orientation: Vec3::new(ux, uy, uz),
+                    metal: p.schema.name == "metal2",
+                    transmission: (p.schema.name == "trans2").then(|| (real(6), real(7))),
                 })
             }
             _ => {

@@ -236,6 +236,10 @@ def cases():
     anti_pts = irradiance_points(rng, 30, [-.5, -.7, 0], [1.5, 1.3, 0], [(0, 0, 1)])
     anti_pts += irradiance_points(rng, 20, [-4, -4, -2], [-2, -2, -2], [(0, 0, 1)])
     case("antimatter-irradiance", "antimatter.rad", ["-I"], anti_pts)
+    aniso_view = box_rays(rng, 50, [-3, -3, 1], [3, 3, 3], toward=[0, 0, 0], spread=2)
+    aniso_view += box_rays(rng, 20, [-1, -2, .5], [1, 0, 1.5], toward=[0, 1, 1], spread=.8)
+    case("aniso-view", "aniso.rad", ["-av", ".05", ".05", ".05"], aniso_view, "-ovL")
+    case("aniso-hit-irradiance", "aniso.rad", ["-i"], aniso_view[:30], "-ov")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

@@ -1,6 +1,7 @@
 //! Materials: what a ray sees where it hits. Each file reproduces one of Radiance's
 //! shading routines; `Material` is the closed set the renderer models so far.
 
+pub mod anisotropic;
 pub mod antimatter;
 pub mod dielectric;
 pub mod glass;
@@ -25,6 +26,8 @@ pub enum Material {
     /// `dielectric` and `interface`.
     Dielectric(dielectric::Dielectric),
     Antimatter(antimatter::Antimatter),
+    /// `plastic2`, `metal2`, `trans2`.
+    Anisotropic(anisotropic::Anisotropic),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
 }
@@ -45,6 +48,7 @@ impl Material {
         match self {
             Material::Normal(n) => n.is_transparent(),
             Material::Glass(_) | Material::Dielectric(_) => true,
+            Material::Anisotropic(a) => a.transmission.is_some(),
             _ => false,
         }
     }
@@ -56,6 +60,7 @@ impl Material {
             Material::Glass(g) => g.transmission,
             Material::Dielectric(d) => d.inside,
             Material::Antimatter(_) => Color::ZERO,
+            Material::Anisotropic(a) => a.color,
             Material::Emitter(e) => e.color,
         }
     }
