@@ -621,3 +621,62 @@ impl<'a> Tracer<'a> {
         Some(probe.color)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::tests::IrBuilder;
+
+    fn hit_name(scene: &Scene, org: Vec3, dir: Vec3) -> String {
+        let t = Tracer::new(scene, Options::default());
+        match t.radiance(org, dir).hit {
+            Target::Object(o) => scene
+                .object(o.0)
+                .map(|o| o.name.clone())
+                .unwrap_or_default(),
+            _ => String::new(),
+        }
+    }
+
+    /// Radiance's `rayreject`: among coincident surfaces the later modifier wins, a
+    /// front face beats a back face, and a surface with a material beats one without.
+    #[test]
+    fn coincident_surfaces_break_ties_as_radiance() {
+        let mut b = IrBuilder::default();
+        let first = b.plastic("first", 0.2);
+        let second = b.plastic("second", 0.8);
+        b.square("early", first, 0.0, true);
+        b.square("late", second, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(hit_name(&scene, Vec3::new(0.2, 0.1, 1.0), -Vec3::Z), "late");
+
+        let mut b = IrBuilder::default();
+        let first = b.plastic("first", 0.2);
+        let second = b.plastic("second", 0.8);
+        b.square("front", first, 0.0, true);
+        b.square("back", second, 0.0, false);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(
+            hit_name(&scene, Vec3::new(0.2, 0.1, 1.0), -Vec3::Z),
+            "front"
+        );
+    }
+
+    /// Hits closer than `FTINY` are ignored: a ray leaving a surface does not hit it
+    /// again.
+    #[test]
+    fn hits_within_ftiny_are_ignored() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        b.square("floor", grey, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(
+            hit_name(&scene, Vec3::new(0.0, 0.0, 0.5 * FTINY), -Vec3::Z),
+            ""
+        );
+        assert_eq!(
+            hit_name(&scene, Vec3::new(0.0, 0.0, 2.0 * FTINY), -Vec3::Z),
+            "floor"
+        );
+    }
+}

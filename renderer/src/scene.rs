@@ -517,3 +517,115 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
     }
     (out, illegal)
 }
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use radc_lang::scene::ir::Prim;
+    use radc_lang::source::{FileId, Span};
+
+    /// Builds IR scenes by hand: the renderer's tests never go through text.
+    #[derive(Default)]
+    pub(crate) struct IrBuilder {
+        pub scene: ir::Scene,
+    }
+
+    impl IrBuilder {
+        pub fn add(
+            &mut self,
+            type_name: &str,
+            name: &str,
+            modifier: Option<u32>,
+            kind: PrimKind,
+        ) -> u32 {
+            let span = Span::new(FileId(0), 0..0);
+            self.scene.prims.push(Prim {
+                name: name.into(),
+                name_span: span,
+                modifier_span: span,
+                schema: radc_lang::schema::lookup(type_name).expect("a known type"),
+                modifier: modifier.map_or(ModRef::Void, |m| ModRef::Prim(PrimId(m))),
+                refs: Vec::new(),
+                kind,
+                span,
+            });
+            self.scene.prims.len() as u32 - 1
+        }
+
+        pub fn plastic(&mut self, name: &str, grey: f64) -> u32 {
+            self.add(
+                "plastic",
+                name,
+                None,
+                PrimKind::Plastic {
+                    color: [grey; 3],
+                    spec: 0.0,
+                    rough: 0.0,
+                },
+            )
+        }
+
+        pub fn square(&mut self, name: &str, modifier: u32, z: f64, up: bool) -> u32 {
+            let mut vertices = vec![
+                [-1.0, -1.0, z],
+                [1.0, -1.0, z],
+                [1.0, 1.0, z],
+                [-1.0, 1.0, z],
+            ];
+            if !up {
+                vertices.reverse();
+            }
+            self.add(
+                "polygon",
+                name,
+                Some(modifier),
+                PrimKind::Polygon { vertices },
+            )
+        }
+    }
+
+    #[test]
+    fn compiles_reachable_surfaces_and_their_sources() {
+        let mut b = IrBuilder::default();
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        b.add(
+            "sphere",
+            "bulb",
+            Some(lamp),
+            PrimKind::Sphere {
+                center: [0.0, 0.0, 3.0],
+                radius: 0.5,
+            },
+        );
+        let grey = b.plastic("grey", 0.5);
+        b.plastic("unused", 0.2);
+        b.square("floor", grey, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(scene.objects.len(), 2);
+        assert_eq!(
+            scene.materials.len(),
+            2,
+            "the unused material is not compiled"
+        );
+        assert_eq!(scene.sources.len(), 1);
+    }
+
+    #[test]
+    fn unsupported_types_are_listed_not_dropped() {
+        let mut b = IrBuilder::default();
+        let m = b.add(
+            "mist",
+            "fog",
+            None,
+            PrimKind::Other {
+                strings: Vec::new(),
+                reals: Vec::new(),
+            },
+        );
+        b.square("cloud", m, 0.0, true);
+        let problems = Scene::compile(&b.scene).expect_err("mist is not rendered yet");
+        assert_eq!(problems.len(), 1);
+        assert_eq!(problems[0].name, "fog");
+        assert_eq!(problems[0].type_name, "mist");
+    }
+}
