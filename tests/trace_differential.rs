@@ -197,7 +197,7 @@ fn refuses_bad_and_unsupported_scenes() {
     let unsupported = dir.path().join("mist.rad");
     std::fs::write(
         &unsupported,
-        "void mist g 0 0 0\ng sphere s 0 0 4 0 0 0 1\n",
+        "void mist g 0 0 6 .1 .1 .1 .5 .5 .5\ng sphere s 0 0 4 0 0 0 1\n",
     )
     .expect("write");
     let out = run_raw(

@@ -62,6 +62,8 @@ pub struct Options {
     /// `-dr`: relays of light through mirrors (virtual sources; apply with
     /// `Scene::add_virtual_sources`).
     pub relays: u32,
+    /// `-me`: extinction coefficient of the medium filling the scene (absorbing only).
+    pub medium: Color,
 }
 
 impl Default for Options {
@@ -76,6 +78,7 @@ impl Default for Options {
             backface_visible: true,
             irradiance_at_hits: false,
             relays: 2,
+            medium: Color::ZERO,
         }
     }
 }
@@ -268,6 +271,7 @@ impl<'a> Tracer<'a> {
     /// A primary ray's full evaluation.
     pub fn radiance(&self, org: Vec3, dir: Vec3) -> RayState {
         let mut r = RayState::primary(org, dir);
+        r.extinction = self.options.medium;
         self.trace(&mut r);
         r
     }
@@ -276,6 +280,7 @@ impl<'a> Tracer<'a> {
     /// surface of reflectance `pi` pretended to be hit just in front of the point.
     pub fn irradiance(&self, org: Vec3, dir: Vec3) -> RayState {
         let mut r = RayState::primary(org + dir * 1.1e-4, -dir);
+        r.extinction = self.options.medium;
         r.length = 1e-5;
         r.other_length = 1e-5;
         r.point = r.org + r.dir * r.length;
@@ -338,6 +343,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Dielectric(d)) => d.shade(self, r),
             Some(Material::Antimatter(a)) => a.shade(self, r),
             Some(Material::Anisotropic(a)) => a.shade(self, r),
+            Some(Material::Mist(m)) => m.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             None => self.transmit(r),
         }

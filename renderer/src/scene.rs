@@ -12,6 +12,7 @@ use crate::materials::dielectric::Dielectric;
 use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
+use crate::materials::mist::Mist;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
@@ -354,6 +355,22 @@ impl Compiler<'_> {
                     kind: EmitterKind::Illum { alternate },
                 })
             }
+            PrimKind::Other { reals, .. } if p.schema.name == "mist" => {
+                if reals.len() > 3 && reals[3..6.min(reals.len())].iter().any(|a| *a > FTINY) {
+                    self.unsupported(
+                        kind,
+                        "scattering mist (an albedo) is not rendered yet; absorbing mist is",
+                    );
+                    return None;
+                }
+                let e = |i: usize| reals.get(i).copied().unwrap_or(0.0);
+                let extinction = if reals.len() > 2 {
+                    Vec3::new(e(0), e(1), e(2))
+                } else {
+                    Vec3::ZERO
+                };
+                Material::Mist(Mist { extinction })
+            }
             PrimKind::Other { strings, reals }
                 if matches!(p.schema.name, "plastic2" | "metal2" | "trans2") =>
             {
@@ -619,11 +636,11 @@ pub(crate) mod tests {
             None,
             PrimKind::Other {
                 strings: Vec::new(),
-                reals: Vec::new(),
+                reals: vec![0.1, 0.1, 0.1, 0.5, 0.5, 0.5],
             },
         );
         b.square("cloud", m, 0.0, true);
-        let problems = Scene::compile(&b.scene).expect_err("mist is not rendered yet");
+        let problems = Scene::compile(&b.scene).expect_err("scattering mist is not rendered yet");
         assert_eq!(problems.len(), 1);
         assert_eq!(problems[0].name, "fog");
         assert_eq!(problems[0].type_name, "mist");

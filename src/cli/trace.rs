@@ -265,6 +265,19 @@ pub(super) fn render_option<'a>(
         // Accepted for compatibility: radc tests every shadow (-dt 0), always follows
         // relayed paths (-dp), and the rest only matter for indirect light.
         "-dr" => o.relays = number(it, "-dr")?.max(0.0) as u32,
+        "-me" => {
+            o.medium = Vec3::new(number(it, "-me")?, number(it, "-me")?, number(it, "-me")?)
+                .max(Vec3::ZERO)
+        }
+        "-ma" => {
+            let albedo = [number(it, "-ma")?, number(it, "-ma")?, number(it, "-ma")?];
+            if albedo.iter().any(|a| *a > 0.0) {
+                return Err("a scattering medium (-ma > 0) is not implemented yet; -me is".into());
+            }
+        }
+        "-mg" | "-ms" => {
+            number(it, arg)?;
+        }
         "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
             number(it, arg)?;
         }

@@ -240,6 +240,11 @@ def cases():
     aniso_view += box_rays(rng, 20, [-1, -2, .5], [1, 0, 1.5], toward=[0, 1, 1], spread=.8)
     case("aniso-view", "aniso.rad", ["-av", ".05", ".05", ".05"], aniso_view, "-ovL")
     case("aniso-hit-irradiance", "aniso.rad", ["-i"], aniso_view[:30], "-ov")
+    mist_view = box_rays(rng, 40, [-3, -3, .5], [3, 3, 3.5], toward=[0, 0, 1.5], spread=2.5)
+    mist_view += box_rays(rng, 15, [2.2, 2.2, .3], [3.8, 3.8, 1.7])  # inside the fog
+    case("mist-view", "mist.rad", ["-av", ".05", ".05", ".05"], mist_view, "-ovlL")
+    case("mist-irradiance", "mist.rad", ["-I"], irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]))
+    case("medium-view", "dielectric.rad", ["-me", ".05", ".1", ".2", "-lr", "12"], die_view[:30], "-ovL")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

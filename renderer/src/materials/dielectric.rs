@@ -13,7 +13,7 @@ pub struct Dielectric {
     /// Refractive index inside relative to outside.
     pub index: f64,
     /// `interface`: transmission per unit length of the outside medium (a plain
-    /// dielectric has the scene's medium, which radc takes as clear).
+    /// dielectric has the scene's medium, `-me`).
     pub outside: Option<Color>,
 }
 
@@ -43,7 +43,7 @@ impl Dielectric {
             cos1 = -cos1;
             normal = -normal;
             r.extinction = extinction(self.inside);
-            refracted_extinction = self.outside.map_or(Color::ZERO, extinction);
+            refracted_extinction = self.outside.map_or(t.options().medium, extinction);
         } else {
             nratio = 1.0 / nratio;
             refracted_extinction = extinction(self.inside);

@@ -8,6 +8,7 @@ pub mod glass;
 pub mod light;
 pub mod metal;
 pub mod mirror;
+pub mod mist;
 pub mod plastic;
 pub mod trans;
 
@@ -28,6 +29,7 @@ pub enum Material {
     Antimatter(antimatter::Antimatter),
     /// `plastic2`, `metal2`, `trans2`.
     Anisotropic(anisotropic::Anisotropic),
+    Mist(mist::Mist),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
 }
@@ -47,7 +49,7 @@ impl Material {
     pub fn is_transparent(&self) -> bool {
         match self {
             Material::Normal(n) => n.is_transparent(),
-            Material::Glass(_) | Material::Dielectric(_) => true,
+            Material::Glass(_) | Material::Dielectric(_) | Material::Mist(_) => true,
             Material::Anisotropic(a) => a.transmission.is_some(),
             _ => false,
         }
@@ -61,6 +63,7 @@ impl Material {
             Material::Dielectric(d) => d.inside,
             Material::Antimatter(_) => Color::ZERO,
             Material::Anisotropic(a) => a.color,
+            Material::Mist(m) => m.extinction,
             Material::Emitter(e) => e.color,
         }
     }
