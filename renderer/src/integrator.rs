@@ -64,6 +64,8 @@ pub struct Options {
     pub relays: u32,
     /// `-me`: extinction coefficient of the medium filling the scene (absorbing only).
     pub medium: Color,
+    /// `-dv`: light sources are seen by rays (otherwise only by shadow rays).
+    pub direct_visible: bool,
 }
 
 impl Default for Options {
@@ -79,6 +81,7 @@ impl Default for Options {
             irradiance_at_hits: false,
             relays: 2,
             medium: Color::ZERO,
+            direct_visible: true,
         }
     }
 }
@@ -122,6 +125,8 @@ pub struct RayState {
     pub other_length: f64,
     /// Extinction coefficient of the medium the ray travels in (inside a dielectric).
     pub extinction: Color,
+    /// Distance travelled from the eye to this ray's origin.
+    pub path_length: f64,
     /// Modifiers whose surfaces this ray passes through (inside `antimatter`), and the
     /// set its transmitted continuations get (`clipset`, `newcset`).
     pub clipset: Vec<i64>,
@@ -153,6 +158,7 @@ impl RayState {
             mirror_length: FHUGE,
             other_length: FHUGE,
             extinction: Color::ZERO,
+            path_length: 0.0,
             clipset: Vec::new(),
             new_clipset: None,
             passages: Vec::new(),
@@ -387,6 +393,7 @@ impl<'a> Tracer<'a> {
         child.coef = coef.unwrap_or(Color::ONE);
         child.weight = r.weight * rw;
         child.extinction = r.extinction;
+        child.path_length = r.path_length + r.length;
         child.clipset = if kind.reflects() {
             r.clipset.clone()
         } else {

@@ -281,7 +281,8 @@ pub(super) fn render_option<'a>(
         "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
             number(it, arg)?;
         }
-        s if s.starts_with("-u") || s.starts_with("-dv") => {}
+        s if switch(s, "-dv", &mut o.direct_visible) => {}
+        s if s.starts_with("-u") => {}
         _ => return Ok(false),
     }
     Ok(true)

@@ -245,6 +245,7 @@ def cases():
     case("mist-view", "mist.rad", ["-av", ".05", ".05", ".05"], mist_view, "-ovlL")
     case("mist-irradiance", "mist.rad", ["-I"], irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]))
     case("medium-view", "dielectric.rad", ["-me", ".05", ".1", ".2", "-lr", "12"], die_view[:30], "-ovL")
+    case("emitters-invisible-sources", "emitters.rad", ["-dv-", "-dr", "1"], em_view, "-ov")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

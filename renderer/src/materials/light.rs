@@ -119,6 +119,15 @@ impl Emitter {
             }
             return;
         }
+        // `-dv-`: sources are invisible except to shadow rays (and glows too far away to
+        // light anything are seen as usual).
+        if !t.options().direct_visible
+            && !r.kind.any(RayKind::SHADOW)
+            && !self.distant_glow(r.path_length + r.length)
+        {
+            r.coef = Color::ZERO;
+            return;
+        }
         if r.rod < 0.0 {
             if !t.options().backface_visible {
                 t.transmit(r);
