@@ -127,6 +127,9 @@ pub struct RayState {
     pub extinction: Color,
     /// Distance travelled from the eye to this ray's origin.
     pub path_length: f64,
+    /// Farthest distance the ray may hit at (0: unlimited; rtrace's `-ld`, the aft
+    /// clipping plane). Rays passed through a surface keep what is left of it.
+    pub max_distance: f64,
     /// Modifiers whose surfaces this ray passes through (inside `antimatter`), and the
     /// set its transmitted continuations get (`clipset`, `newcset`).
     pub clipset: Vec<i64>,
@@ -159,6 +162,7 @@ impl RayState {
             other_length: FHUGE,
             extinction: Color::ZERO,
             path_length: 0.0,
+            max_distance: 0.0,
             clipset: Vec::new(),
             new_clipset: None,
             passages: Vec::new(),
@@ -276,7 +280,13 @@ impl<'a> Tracer<'a> {
 
     /// A primary ray's full evaluation.
     pub fn radiance(&self, org: Vec3, dir: Vec3) -> RayState {
+        self.radiance_within(org, dir, 0.0)
+    }
+
+    /// A primary ray that may hit nothing beyond `max_distance` (0: no limit).
+    pub fn radiance_within(&self, org: Vec3, dir: Vec3, max_distance: f64) -> RayState {
         let mut r = RayState::primary(org, dir);
+        r.max_distance = max_distance;
         r.extinction = self.options.medium;
         self.trace(&mut r);
         r
@@ -298,13 +308,20 @@ impl<'a> Tracer<'a> {
 
     /// Radiance's `raytrace`.
     pub fn trace(&self, r: &mut RayState) {
-        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir)) {
+        let limit = if r.max_distance > FTINY {
+            r.max_distance
+        } else {
+            f64::INFINITY
+        };
+        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit) {
             r.hit = Target::Object(ObjectId(c.object));
             r.length = c.t;
             r.point = r.org + r.dir * c.t;
             r.normal = c.normal;
             r.rod = c.rod;
             self.shade_object(r, c.object);
+        } else if limit.is_finite() {
+            // Stopped by the aft plane: nothing seen, not even distant sources.
         } else if let Some(d) = self.distant_hit(r) {
             r.hit = Target::Distant(d);
             let material = self.scene.distant.get(d as usize).and_then(|o| o.material);
@@ -394,6 +411,11 @@ impl<'a> Tracer<'a> {
         child.weight = r.weight * rw;
         child.extinction = r.extinction;
         child.path_length = r.path_length + r.length;
+        child.max_distance = if kind.reflects() || r.max_distance <= FTINY {
+            0.0
+        } else {
+            r.max_distance - r.length
+        };
         child.clipset = if kind.reflects() {
             r.clipset.clone()
         } else {
@@ -440,11 +462,12 @@ impl<'a> Tracer<'a> {
     /// The nearest surface along `ray`, with Radiance's tie rules for surfaces within
     /// `FTINY` of each other: a surface with a material beats one without, a front face
     /// beats a back face, then the later modifier wins.
-    fn nearest(&self, ray: &Ray) -> Option<Candidate> {
+    fn nearest(&self, ray: &Ray, limit: f64) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
-        self.scene.bvh.traverse(ray, f64::INFINITY, |i| {
+        self.scene.bvh.traverse(ray, limit + FTINY, |i| {
             if let Some(o) = self.scene.object(i)
                 && let Some(h) = o.shape.intersect(ray)
+                && h.t <= limit + FTINY
             {
                 let cand = Candidate {
                     object: i,
@@ -456,7 +479,7 @@ impl<'a> Tracer<'a> {
                     best = Some(cand);
                 }
             }
-            best.map_or(f64::INFINITY, |b| b.t + FTINY)
+            best.map_or(limit + FTINY, |b| b.t + FTINY)
         });
         best
     }
@@ -592,7 +615,7 @@ impl<'a> Tracer<'a> {
             // The source's own value, from the source surface alone (`srcvalue`).
             Some(self.source_value(&sr, si)? * c)
         };
-        match self.nearest(&Ray::new(sr.org, sr.dir)) {
+        match self.nearest(&Ray::new(sr.org, sr.dir), f64::INFINITY) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {

@@ -140,6 +140,8 @@ struct Args {
     y_res: u32,
     /// `-w`: report the scene's warnings (errors are always reported).
     warnings: bool,
+    /// `-ld`: the length of each ray's direction limits how far it goes.
+    limit_distance: bool,
 }
 
 /// Radiance's boolean switches: `-x` toggles, `-x+` sets, `-x-` clears.
@@ -165,6 +167,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         x_res: 0,
         y_res: 0,
         warnings: true,
+        limit_distance: false,
     };
     let mut it = args.iter().map(String::as_str).peekable();
     while let Some(arg) = it.next() {
@@ -172,6 +175,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             s if switch(s, "-h", &mut a.header) => {}
             s if switch(s, "-I", &mut a.irradiance) => {}
             s if switch(s, "-w", &mut a.warnings) => {}
+            s if switch(s, "-ld", &mut a.limit_distance) => {}
             "-n" => {
                 number(&mut it, arg)?;
             }
@@ -345,7 +349,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
         }
         let results: Vec<RayState> = batch
             .par_iter()
-            .map(|&(org, dir)| evaluate(&tracer, org, dir, a.irradiance))
+            .map(|&(org, dir)| evaluate(&tracer, org, dir, &a))
             .collect();
         for r in &results {
             write_ray(&mut out, r, &scene, &a);
@@ -368,12 +372,13 @@ fn run_parsed(args: &[String]) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, irradiance: bool) -> RayState {
-    normalize(&mut dir);
-    if irradiance {
+fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args) -> RayState {
+    let length = normalize(&mut dir);
+    if a.irradiance {
         tracer.irradiance(org, dir)
     } else {
-        tracer.radiance(org, dir)
+        // -ld: the direction's length is how far the ray may go.
+        tracer.radiance_within(org, dir, if a.limit_distance { length } else { 0.0 })
     }
 }
 

@@ -107,6 +107,16 @@ def mirror_rays(rng):
     return rays
 
 
+def limited(rays, rng):
+    """The same rays with directions scaled to random lengths (for -ld)."""
+    out = []
+    for r in rays:
+        n = math.sqrt(sum(x * x for x in r[3:]))
+        k = rng.choice([.5, 1, 2, 4, 8, 50]) / n
+        out.append(r[:3] + [x * k for x in r[3:]])
+    return out
+
+
 def shift(rays, by):
     return [[r[0] + by[0], r[1] + by[1], r[2] + by[2]] + r[3:] for r in rays]
 
@@ -246,6 +256,8 @@ def cases():
     case("mist-irradiance", "mist.rad", ["-I"], irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]))
     case("medium-view", "dielectric.rad", ["-me", ".05", ".1", ".2", "-lr", "12"], die_view[:30], "-ovL")
     case("emitters-invisible-sources", "emitters.rad", ["-dv-", "-dr", "1"], em_view, "-ov")
+    case("glass-limited", "glass.rad", ["-ld"], limited(glass_view, rng), "-ovL")
+    case("distant-limited", "distant.rad", ["-ld"], limited(box_rays(rng, 40, [-5, -5, .5], [5, 5, 4]), rng), "-ovL")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 
