@@ -81,11 +81,14 @@ pub fn draw(
                 let n = part.len() as f64;
                 let cx = part.iter().map(|p| p[0]).sum::<f64>() / n;
                 let cy = part.iter().map(|p| p[1]).sum::<f64>() / n;
-                let (org, dir) = camera.ray(cx, cy);
+                let Some((org, dir, max)) = camera.ray(cx, cy) else {
+                    continue; // not in view
+                };
                 if outside_aperture(s, org, dir) {
                     continue;
                 }
                 let mut sr = RayState::primary(org, dir);
+                sr.max_distance = max;
                 sr.kind = RayKind::SHADOW;
                 sr.source = Some(si);
                 tracer.trace(&mut sr);
@@ -168,7 +171,8 @@ fn source_poly(s: &Source, camera: &Camera) -> Option<Poly> {
             let sv_sign = if j == 2 || j == 3 { 1.0 } else { -1.0 };
             let mut p = loc + su * su_sign + sv * sv_sign;
             if distant {
-                p += vp;
+                // Just beyond the fore plane, as Radiance puts it.
+                p = p * (1.0 + camera.fore()) + vp;
             }
             let (x, y) = camera.project(p)?;
             out.push([x, y]);

@@ -6,15 +6,15 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use radc_renderer::camera::{Projection, View};
-use radc_renderer::math::{Color, Vec3};
+use radc_renderer::camera::View;
+use radc_renderer::math::Color;
 use radc_renderer::{Options, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
 use super::trace::{load_scene, number, render_option};
 
-const USAGE: &str = "usage: radc render [-vt{v|l}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
+const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
 [-vv deg] [-x res] [-y res] [-pa aspect] [-ab 0] [-av r g b] [-o picture.hdr] scene.rad...";
 
 struct Args {
@@ -28,12 +28,18 @@ struct Args {
     warnings: bool,
 }
 
-fn vector<'a>(it: &mut impl Iterator<Item = &'a str>, what: &str) -> Result<Vec3, String> {
-    Ok(Vec3::new(
-        number(it, what)?,
-        number(it, what)?,
-        number(it, what)?,
-    ))
+/// View options from a view file (`-vf`): any words of the file before its first
+/// empty line (so a picture's header works too), view options taken, the rest ignored.
+fn view_file(view: &mut View, path: &str) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read view file '{path}': {e}"))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let head = text.split("\n\n").next().unwrap_or("");
+    let words: Vec<&str> = head.split_whitespace().collect();
+    let mut i = 0;
+    while i < words.len() {
+        i += view.option(&words[i..])?.max(1);
+    }
+    Ok(())
 }
 
 fn parse_args(args: &[String]) -> Result<Args, String> {
@@ -53,21 +59,19 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         scenes: Vec::new(),
         warnings: true,
     };
-    let mut it = args.iter().map(String::as_str);
-    while let Some(arg) = it.next() {
-        match arg {
-            "-vtv" => a.view.projection = Projection::Perspective,
-            "-vtl" => a.view.projection = Projection::Parallel,
-            s if s.starts_with("-vt") => {
-                return Err(format!(
-                    "view type '{s}' is not supported yet (-vtv, -vtl are)"
-                ));
+    let words: Vec<&str> = args.iter().map(String::as_str).collect();
+    let mut it = words.iter().copied().enumerate().peekable();
+    while let Some((at, arg)) = it.next() {
+        let used = a.view.option(&words[at..])?;
+        if used > 0 {
+            for _ in 1..used {
+                it.next();
             }
-            "-vp" => a.view.position = vector(&mut it, arg)?,
-            "-vd" => a.view.direction = vector(&mut it, arg)?,
-            "-vu" => a.view.up = vector(&mut it, arg)?,
-            "-vh" => a.view.horizontal = number(&mut it, arg)?,
-            "-vv" => a.view.vertical = number(&mut it, arg)?,
+            continue;
+        }
+        let mut it = std::iter::from_fn(|| it.next().map(|(_, w)| w));
+        match arg {
+            "-vf" => view_file(&mut a.view, it.next().ok_or("-vf needs a file name")?)?,
             "-x" | "-y" => {
                 let v = number(&mut it, arg)?;
                 if !(1.0..=32767.0).contains(&v) {
@@ -140,11 +144,12 @@ fn run_parsed(args: &[String]) -> ExitCode {
             let j = h - 1 - row;
             let (camera, tracer) = (&camera, &tracer);
             (0..w).map(move |i| {
-                let (org, dir) = camera.ray(
-                    (f64::from(i) + 0.5) / f64::from(w),
-                    (f64::from(j) + 0.5) / f64::from(h),
-                );
-                tracer.radiance(org, dir).color
+                let x = (f64::from(i) + 0.5) / f64::from(w);
+                let y = (f64::from(j) + 0.5) / f64::from(h);
+                // Outside a fisheye's circle the picture is black.
+                camera.ray(x, y).map_or(Color::ZERO, |(org, dir, max)| {
+                    tracer.radiance_within(org, dir, max).color
+                })
             })
         })
         .collect();

@@ -32,6 +32,13 @@ CASES = [
     ("small-glows", "emitters.rad", "-vp 3 3 1.8 -vd -1 -1 -.2 -vh 70 -vv 50 -x 40 -y 40", ""),
     ("small-sun", "distant.rad", "-vp 0 -8 .3 -vd .3 .4 .866 -vu 0 0 1 -vh 20 -vv 20 -x 32 -y 32", ""),
     ("small-lamp", "sphere_lamp.rad", "-vp 60 -60 20 -vd -1 1 -.25 -vh 8 -vv 8 -x 16 -y 16", ""),
+    # the other projections, shift and lift, clipping planes, view files
+    ("room-fisheye", "polygon_lamp.rad", "-vth -vp 0 0 1.5 -vd 0 0 1 -vu 0 1 0 -vh 180 -vv 180 -x 32 -y 32", "-av .1 .1 .1"),
+    ("room-angular", "polygon_lamp.rad", "-vta -vp 0 0 1.5 -vd 1 0 0 -vh 180 -vv 180 -x 32 -y 32", "-av .1 .1 .1"),
+    ("room-panorama", "polygon_lamp.rad", "-vtc -vp 0 0 1.5 -vd 1 0 0 -vh 360 -vv 90 -x 64 -y 32", "-av .1 .1 .1"),
+    ("room-planisphere", "polygon_lamp.rad", "-vts -vp 0 0 1.5 -vd 0 1 0 -vh 200 -vv 200 -x 32 -y 32", "-av .1 .1 .1"),
+    ("room-shifted-clipped", "polygon_lamp.rad", "-vp 2.5 -2.5 1.5 -vd -1 1 -.3 -vh 60 -vv 45 -vs .2 -vl -.1 -vo 1 -va 4 -x 32 -y 32", "-av .1 .1 .1"),
+    ("room-view-file", "polygon_lamp.rad", "-vf tests/data/render/corner.vf -x 32 -y 32", "-av .1 .1 .1"),
     ("small-mirrored", "mirrors.rad", "-vp 0 -40 1.5 -vd 0 1 0 -vh 12 -vv 8 -x 24 -y 16", "-dr 2"),
     ("emitters-relay", "emitters.rad", "-vp 2 0 1.2 -vd -1 0 -.4 -vh 40 -vv 40 -x 40 -y 40", "-dr 1"),
 ]
@@ -39,6 +46,7 @@ CASES = [
 
 def render(case, out_path):
     cid, scene, view, light = case
+    view = view.replace("tests/data/render/", DATA + "/")
     with tempfile.TemporaryDirectory() as tmp:
         octree = os.path.join(tmp, "scene.oct")
         with open(octree, "wb") as f:
