@@ -194,15 +194,48 @@ fn refuses_bad_and_unsupported_scenes() {
     assert!(out.stdout.is_empty());
     assert!(String::from_utf8_lossy(&out.stderr).contains("E0202"));
 
-    let glass = dir.path().join("glass.rad");
+    let unsupported = dir.path().join("mist.rad");
     std::fs::write(
-        &glass,
-        "void glass g 0 0 3 .9 .9 .9\ng sphere s 0 0 4 0 0 0 1\n",
+        &unsupported,
+        "void mist g 0 0 6 .1 .1 .1 .5 .5 .5\ng sphere s 0 0 4 0 0 0 1\n",
     )
     .expect("write");
-    let out = run_raw(&["-h", glass.to_str().expect("path")], b"0 0 5 0 0 -1\n");
+    let out = run_raw(
+        &["-h", unsupported.to_str().expect("path")],
+        b"0 0 5 0 0 -1\n",
+    );
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot render glass 'g'"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot render mist 'g'"));
+
+    // Built-in generators are expanded in-process, so their geometry is there.
+    let generated = dir.path().join("generated.rad");
+    std::fs::write(
+        &generated,
+        "void plastic p 0 0 5 .5 .5 .5 0 0\n!genbox p box 1 1 1\n",
+    )
+    .expect("write");
+    let out = run_raw(
+        &["-h", "-ov", generated.to_str().expect("path")],
+        b".5 .5 5 0 0 -1\n",
+    );
+    assert_eq!(out.status.code(), Some(0));
+    assert!(!out.stdout.is_empty());
+
+    // What any other `!` command makes would be missing: refused rather than rendered
+    // wrong.
+    let command = dir.path().join("command.rad");
+    std::fs::write(
+        &command,
+        "void plastic p 0 0 5 .5 .5 .5 0 0\n!cat box.rad\n",
+    )
+    .expect("write");
+    let out = run_raw(
+        &["-h", "-w", command.to_str().expect("path")],
+        b"0 0 5 0 0 -1\n",
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("'!' command"));
 
     let out = run_raw(&["-ab", "2", bad.to_str().expect("path")], b"");
     assert_eq!(out.status.code(), Some(2));
@@ -224,4 +257,32 @@ fn zero_direction_prints_an_empty_record() {
         "0.000000e+00\t0.000000e+00\t0.000000e+00\t1.000000e+10\t"
     );
     assert_eq!(lines[0], lines[2]);
+}
+
+/// `-fac` with `-x -y` writes a Radiance picture (rtrace's way of rendering from
+/// `vwrays`), stopping after x * y rays; its pixels are the `-ov` values.
+#[test]
+fn color_output_with_resolution_is_a_picture() {
+    let scene = data().join("scenes/sphere_lamp.rad");
+    let scene = scene.to_str().expect("path");
+    let rays: String = (0..12)
+        .map(|i| format!("{} 0 1 0 0 -1\n", f64::from(i) * 0.3 - 1.5))
+        .collect();
+    let out = run_raw(&["-fac", "-x", "10", "-y", "1", scene], rays.as_bytes());
+    assert!(out.status.success());
+    let (w, h, pixels) = radc_renderer::picture::read(&out.stdout).expect("a picture");
+    assert_eq!((w, h, pixels.len()), (10, 1, 10));
+    let text = run_raw(&["-h", "-ov", scene], rays.as_bytes());
+    let values: Vec<f64> = String::from_utf8_lossy(&text.stdout)
+        .split_whitespace()
+        .map(|w| w.parse().expect("number"))
+        .collect();
+    for (i, p) in pixels.iter().enumerate() {
+        let got = radc_renderer::picture::from_rgbe(*p);
+        let want = values[3 * i];
+        assert!(
+            (got.x - want).abs() <= want / 100.0 + 1e-9,
+            "pixel {i}: {got:?} vs {want}"
+        );
+    }
 }

@@ -8,6 +8,9 @@ const BINS: usize = 16;
 const LEAF_SIZE: usize = 4;
 /// Below this many primitives a subtree is built on the current thread.
 const PARALLEL_THRESHOLD: usize = 4096;
+/// Below this depth SAH chooses splits; deeper, median splits keep the depth logarithmic
+/// (and the build's recursion bounded) whatever the distribution of primitives.
+const SAH_DEPTH: u32 = 32;
 
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -53,7 +56,7 @@ impl Bvh {
         if items.is_empty() {
             return Bvh::default();
         }
-        let tree = build(items);
+        let tree = build(items, 0);
         let mut bvh = Bvh::default();
         bvh.flatten(tree);
         bvh
@@ -94,7 +97,7 @@ impl Bvh {
             return;
         }
         let inv = Vec3::ONE / ray.dir;
-        let mut stack = [0u32; 64];
+        let mut stack = [0u32; 128];
         let mut sp = 1usize;
         while sp > 0 {
             sp -= 1;
@@ -139,7 +142,7 @@ fn bounds_of(items: &[Item]) -> (Bounds, Bounds) {
         })
 }
 
-fn build(mut items: Vec<Item>) -> Build {
+fn build(mut items: Vec<Item>, depth: u32) -> Build {
     let (bounds, cbounds) = bounds_of(&items);
     if items.len() <= LEAF_SIZE {
         return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
@@ -152,14 +155,14 @@ fn build(mut items: Vec<Item>) -> Build {
     } else {
         2
     };
-    if extent[axis] <= 0.0 || !extent[axis].is_finite() {
-        return split_middle(items, bounds, axis);
+    if extent[axis] <= 0.0 || !extent[axis].is_finite() || depth >= SAH_DEPTH {
+        return split_middle(items, bounds, axis, depth);
     }
     let Some(split) = sah_split(&items, &cbounds, axis, bounds) else {
         if items.len() <= 4 * LEAF_SIZE {
             return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
         }
-        return split_middle(items, bounds, axis);
+        return split_middle(items, bounds, axis, depth);
     };
     let (lo, span) = (cbounds.min[axis], extent[axis]);
     let bin = |c: Vec3| (((c[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
@@ -171,24 +174,24 @@ fn build(mut items: Vec<Item>) -> Build {
     items.retain(|i| bin(i.centroid) <= split);
     if items.is_empty() || right.is_empty() {
         items.extend(right);
-        return split_middle(items, bounds, axis);
+        return split_middle(items, bounds, axis, depth);
     }
-    children(items, right, bounds, axis)
+    children(items, right, bounds, axis, depth)
 }
 
-fn children(left: Vec<Item>, right: Vec<Item>, bounds: Bounds, axis: usize) -> Build {
+fn children(left: Vec<Item>, right: Vec<Item>, bounds: Bounds, axis: usize, depth: u32) -> Build {
     let (l, r) = if left.len() + right.len() > PARALLEL_THRESHOLD {
-        rayon::join(|| build(left), || build(right))
+        rayon::join(|| build(left, depth + 1), || build(right, depth + 1))
     } else {
-        (build(left), build(right))
+        (build(left, depth + 1), build(right, depth + 1))
     };
     Build::Interior(bounds, axis as u8, Box::new(l), Box::new(r))
 }
 
-fn split_middle(mut items: Vec<Item>, bounds: Bounds, axis: usize) -> Build {
+fn split_middle(mut items: Vec<Item>, bounds: Bounds, axis: usize, depth: u32) -> Build {
     items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
     let right = items.split_off(items.len() / 2);
-    children(items, right, bounds, axis)
+    children(items, right, bounds, axis, depth)
 }
 
 /// The bin boundary minimizing the surface area heuristic, if splitting beats a leaf.
@@ -229,6 +232,31 @@ fn sah_split(items: &[Item], cb: &Bounds, axis: usize, bounds: Bounds) -> Option
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn skewed_scenes_stay_shallow() {
+        // Boxes at exponentially growing distances: SAH would peel them off one by one.
+        let bounds: Vec<Bounds> = (0..2000)
+            .map(|i| {
+                let c = Vec3::new(1.01f64.powi(i), 0.0, 0.0);
+                Bounds {
+                    min: c - Vec3::splat(1e-3),
+                    max: c + Vec3::splat(1e-3),
+                }
+            })
+            .collect();
+        let bvh = Bvh::build(&bounds);
+        let mut seen = 0;
+        bvh.traverse(
+            &Ray::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::X),
+            f64::INFINITY,
+            |_| {
+                seen += 1;
+                f64::INFINITY
+            },
+        );
+        assert_eq!(seen, 2000);
+    }
 
     #[test]
     fn finds_every_box_on_the_ray() {

@@ -20,6 +20,7 @@ impl RayKind {
     pub const PRIMARY: RayKind = RayKind(0o1);
     pub const SHADOW: RayKind = RayKind(0o2 | 0o200);
     pub const REFLECTED: RayKind = RayKind(0o4);
+    pub const REFRACTED: RayKind = RayKind(0o10);
     pub const TRANS: RayKind = RayKind(0o20);
     pub const AMBIENT: RayKind = RayKind(0o40 | 0o400);
     pub const SPECULAR: RayKind = RayKind(0o100 | 0o1000);
@@ -58,6 +59,13 @@ pub struct Options {
     pub backface_visible: bool,
     /// `-i`: primary rays report the irradiance at the opaque surfaces they hit.
     pub irradiance_at_hits: bool,
+    /// `-dr`: relays of light through mirrors (virtual sources; apply with
+    /// `Scene::add_virtual_sources`).
+    pub relays: u32,
+    /// `-me`: extinction coefficient of the medium filling the scene (absorbing only).
+    pub medium: Color,
+    /// `-dv`: light sources are seen by rays (otherwise only by shadow rays).
+    pub direct_visible: bool,
 }
 
 impl Default for Options {
@@ -71,6 +79,9 @@ impl Default for Options {
             specular_threshold: 0.15,
             backface_visible: true,
             irradiance_at_hits: false,
+            relays: 2,
+            medium: Color::ZERO,
+            direct_visible: true,
         }
     }
 }
@@ -91,6 +102,9 @@ pub struct RayState {
     pub kind: RayKind,
     pub weight: f64,
     pub level: u32,
+    /// Rays in the chain down from the primary, of every kind (transmitted rays keep
+    /// `level`).
+    pub depth: u32,
     /// Coefficient applied by the parent.
     pub coef: Color,
     /// Source this (shadow) ray is aimed at.
@@ -109,6 +123,20 @@ pub struct RayState {
     pub mirror_length: f64,
     /// The distance of everything else (through transparent surfaces).
     pub other_length: f64,
+    /// Extinction coefficient of the medium the ray travels in (inside a dielectric).
+    pub extinction: Color,
+    /// Distance travelled from the eye to this ray's origin.
+    pub path_length: f64,
+    /// Farthest distance the ray may hit at (0: unlimited; rtrace's `-ld`, the aft
+    /// clipping plane). Rays passed through a surface keep what is left of it.
+    pub max_distance: f64,
+    /// Modifiers whose surfaces this ray passes through (inside `antimatter`), and the
+    /// set its transmitted continuations get (`clipset`, `newcset`).
+    pub clipset: Vec<i64>,
+    pub new_clipset: Option<Vec<i64>>,
+    /// For each transmitted link up the ray tree: the modifier of the surface passed
+    /// and whether it was entered from the front (antimatter's penetration count).
+    pub passages: Vec<(i64, bool)>,
 }
 
 impl RayState {
@@ -119,6 +147,7 @@ impl RayState {
             kind: RayKind::PRIMARY,
             weight: 1.0,
             level: 0,
+            depth: 0,
             coef: Color::ONE,
             source: None,
             hit: Target::None,
@@ -131,6 +160,12 @@ impl RayState {
             mirror_color: Color::ZERO,
             mirror_length: FHUGE,
             other_length: FHUGE,
+            extinction: Color::ZERO,
+            path_length: 0.0,
+            max_distance: 0.0,
+            clipset: Vec::new(),
+            new_clipset: None,
+            passages: Vec::new(),
         }
     }
 
@@ -179,12 +214,40 @@ impl RayState {
     }
 }
 
+/// Longest chain of rays radc follows. Radiance limits reflections (`-lr`) but not rays
+/// passing through surfaces; a scene of thousands of stacked `void` surfaces would
+/// otherwise exhaust the stack.
+pub const MAX_CHAIN: u32 = 10_000;
+
+/// Absorption along a ray inside a medium (`rayparticipate` without scattering).
+fn participate(r: &mut RayState) {
+    if r.extinction.max_element() <= 1.0 / FHUGE {
+        return;
+    }
+    let att = |k: f64| {
+        let e = r.length * k;
+        if e <= FTINY {
+            1.0
+        } else if e > 92.0 {
+            0.0
+        } else {
+            (-e).exp()
+        }
+    };
+    r.color *= Color::new(
+        att(r.extinction.x),
+        att(r.extinction.y),
+        att(r.extinction.z),
+    );
+}
+
 /// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
 const LAMBERTIAN: Normal = Normal {
     color: Color::splat(std::f64::consts::PI),
     spec: 0.0,
     rough: 0.0,
     metal: false,
+    transmission: None,
 };
 
 /// Evaluates rays in a compiled scene.
@@ -217,7 +280,14 @@ impl<'a> Tracer<'a> {
 
     /// A primary ray's full evaluation.
     pub fn radiance(&self, org: Vec3, dir: Vec3) -> RayState {
+        self.radiance_within(org, dir, 0.0)
+    }
+
+    /// A primary ray that may hit nothing beyond `max_distance` (0: no limit).
+    pub fn radiance_within(&self, org: Vec3, dir: Vec3, max_distance: f64) -> RayState {
         let mut r = RayState::primary(org, dir);
+        r.max_distance = max_distance;
+        r.extinction = self.options.medium;
         self.trace(&mut r);
         r
     }
@@ -226,6 +296,7 @@ impl<'a> Tracer<'a> {
     /// surface of reflectance `pi` pretended to be hit just in front of the point.
     pub fn irradiance(&self, org: Vec3, dir: Vec3) -> RayState {
         let mut r = RayState::primary(org + dir * 1.1e-4, -dir);
+        r.extinction = self.options.medium;
         r.length = 1e-5;
         r.other_length = 1e-5;
         r.point = r.org + r.dir * r.length;
@@ -237,19 +308,39 @@ impl<'a> Tracer<'a> {
 
     /// Radiance's `raytrace`.
     pub fn trace(&self, r: &mut RayState) {
-        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir)) {
+        let limit = if r.max_distance > FTINY {
+            r.max_distance
+        } else {
+            f64::INFINITY
+        };
+        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit) {
             r.hit = Target::Object(ObjectId(c.object));
             r.length = c.t;
             r.point = r.org + r.dir * c.t;
             r.normal = c.normal;
             r.rod = c.rod;
-            let material = self.scene.object(c.object).and_then(|o| o.material);
-            self.shade(r, material);
+            self.shade_object(r, c.object);
+        } else if limit.is_finite() {
+            // Stopped by the aft plane: nothing seen, not even distant sources.
         } else if let Some(d) = self.distant_hit(r) {
             r.hit = Target::Distant(d);
             let material = self.scene.distant.get(d as usize).and_then(|o| o.material);
             self.shade(r, material);
         }
+        participate(r);
+    }
+
+    /// Shades a surface hit (`raycont`): surfaces whose modifier the ray's antimatter set
+    /// holds are passed through.
+    fn shade_object(&self, r: &mut RayState, object: u32) {
+        let Some(o) = self.scene.object(object) else {
+            return;
+        };
+        if r.clipset.contains(&o.modifier) {
+            r.other_length = r.length;
+            return self.transmit(r);
+        }
+        self.shade(r, o.material);
     }
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
@@ -259,15 +350,23 @@ impl<'a> Tracer<'a> {
         // `-i`: a primary (or passed-through) ray sees every reflecting surface as the
         // white Lambertian of `-I` (raytrace.c's `raytirrad`); lights stay lights.
         let primary = r.kind.0 & !(RayKind::PRIMARY.0 | RayKind::TRANS.0) == 0;
-        if self.options.irradiance_at_hits
-            && primary
-            && matches!(material, Some(Material::Normal(_) | Material::Mirror(_)))
-        {
-            return LAMBERTIAN.shade(self, r);
+        if self.options.irradiance_at_hits && primary {
+            match material {
+                Some(m) if m.is_transparent() => return self.transmit(r),
+                Some(Material::Normal(_) | Material::Mirror(_) | Material::Anisotropic(_)) => {
+                    return LAMBERTIAN.shade(self, r);
+                }
+                _ => {}
+            }
         }
         match material {
             Some(Material::Normal(n)) => n.shade(self, r),
             Some(Material::Mirror(m)) => m.shade(self, r),
+            Some(Material::Glass(g)) => g.shade(self, r),
+            Some(Material::Dielectric(d)) => d.shade(self, r),
+            Some(Material::Antimatter(a)) => a.shade(self, r),
+            Some(Material::Anisotropic(a)) => a.shade(self, r),
+            Some(Material::Mist(m)) => m.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             None => self.transmit(r),
         }
@@ -310,7 +409,39 @@ impl<'a> Tracer<'a> {
         child.kind = r.kind | kind;
         child.coef = coef.unwrap_or(Color::ONE);
         child.weight = r.weight * rw;
+        child.extinction = r.extinction;
+        child.path_length = r.path_length + r.length;
+        child.max_distance = if kind.reflects() || r.max_distance <= FTINY {
+            0.0
+        } else {
+            r.max_distance - r.length
+        };
+        child.clipset = if kind.reflects() {
+            r.clipset.clone()
+        } else {
+            r.new_clipset.clone().unwrap_or_else(|| r.clipset.clone())
+        };
+        child.passages = r.passages.clone();
+        if !kind.reflects()
+            && let Target::Object(o) = r.hit
+            && let Some(obj) = self.scene.object(o.0)
+        {
+            child.passages.push((obj.modifier, r.rod > 0.0));
+        }
+        // The parent's path through an absorbing medium weakens what follows it.
+        let re = r.extinction.min_element() * r.length;
+        if re > 0.1 {
+            child.weight = if re > 92.0 {
+                0.0
+            } else {
+                child.weight * (-re).exp()
+            };
+        }
         child.level = r.level + u32::from(kind.reflects());
+        child.depth = r.depth + 1;
+        if child.depth > MAX_CHAIN {
+            return None;
+        }
         child.source = if kind.reflects() { None } else { r.source };
         if child.weight <= 0.0 || child.weight.is_nan() {
             return None;
@@ -331,11 +462,12 @@ impl<'a> Tracer<'a> {
     /// The nearest surface along `ray`, with Radiance's tie rules for surfaces within
     /// `FTINY` of each other: a surface with a material beats one without, a front face
     /// beats a back face, then the later modifier wins.
-    fn nearest(&self, ray: &Ray) -> Option<Candidate> {
+    fn nearest(&self, ray: &Ray, limit: f64) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
-        self.scene.bvh.traverse(ray, f64::INFINITY, |i| {
+        self.scene.bvh.traverse(ray, limit + FTINY, |i| {
             if let Some(o) = self.scene.object(i)
-                && let Some(h) = o.shape.intersect(ray, best.map_or(f64::INFINITY, |b| b.t))
+                && let Some(h) = o.shape.intersect(ray)
+                && h.t <= limit + FTINY
             {
                 let cand = Candidate {
                     object: i,
@@ -347,7 +479,7 @@ impl<'a> Tracer<'a> {
                     best = Some(cand);
                 }
             }
-            best.map_or(f64::INFINITY, |b| b.t + FTINY)
+            best.map_or(limit + FTINY, |b| b.t + FTINY)
         });
         best
     }
@@ -366,10 +498,19 @@ impl<'a> Tracer<'a> {
         else {
             return true;
         };
-        match (on.material.is_some(), oo.material.is_some()) {
-            (false, true) => return true,
-            (true, false) => return false,
-            _ => {}
+        let (mn, mo) = (
+            on.material.and_then(|m| self.scene.material(m)),
+            oo.material.and_then(|m| self.scene.material(m)),
+        );
+        match (mn, mo) {
+            (None, Some(_)) => return true,
+            (Some(_), None) => return false,
+            (Some(n), Some(o)) => match (n.is_transparent(), o.is_transparent()) {
+                (true, false) => return true,
+                (false, true) => return false,
+                _ => {}
+            },
+            (None, None) => {}
         }
         if new.rod <= 0.0 {
             if old.rod > 0.0 {
@@ -457,22 +598,36 @@ impl<'a> Tracer<'a> {
         sr.dir = dir;
         sr.source = Some(si);
         sr.coef = c;
-        // The source's own value, from the source surface alone (`srcvalue`).
-        let value = self.source_value(&sr, si)? * c;
-        match self.nearest(&Ray::new(sr.org, sr.dir)) {
-            None => Some(value),
-            Some(h) if self.scene.sources[si].target == SourceTarget::Object(h.object) => {
-                Some(value)
-            }
+        let source = self.scene.sources.get(si)?;
+        let value = if source.parent.is_some() {
+            // A virtual source: the ray must meet its mirror; the path through the mirror
+            // to the source it images is then always followed (Radiance follows it
+            // unless a pretest found it clear, which gives the same value).
+            let SourceTarget::Object(mirror) = source.target else {
+                return None;
+            };
+            self.scene
+                .object(mirror)?
+                .shape
+                .intersect(&Ray::new(sr.org, sr.dir))?;
+            None
+        } else {
+            // The source's own value, from the source surface alone (`srcvalue`).
+            Some(self.source_value(&sr, si)? * c)
+        };
+        match self.nearest(&Ray::new(sr.org, sr.dir), f64::INFINITY) {
+            None => value,
+            Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {
-                // Something else is in the way: shade it as a shadow ray would see it.
+                // Something is in the way (or a mirror to follow): shade it as a shadow
+                // ray would see it.
                 sr.hit = Target::Object(ObjectId(h.object));
                 sr.length = h.t;
                 sr.point = sr.org + sr.dir * h.t;
                 sr.normal = h.normal;
                 sr.rod = h.rod;
-                let material = self.scene.object(h.object).and_then(|o| o.material);
-                self.shade(&mut sr, material);
+                self.shade_object(&mut sr, h.object);
+                participate(&mut sr);
                 let mean = (sr.color.x + sr.color.y + sr.color.z) / 3.0;
                 (mean > FTINY).then(|| sr.color * c)
             }
@@ -485,9 +640,7 @@ impl<'a> Tracer<'a> {
         match s.target {
             SourceTarget::Object(o) => {
                 let obj = self.scene.object(o)?;
-                let h = obj
-                    .shape
-                    .intersect(&Ray::new(sr.org, sr.dir), f64::INFINITY)?;
+                let h = obj.shape.intersect(&Ray::new(sr.org, sr.dir))?;
                 probe.hit = Target::Object(ObjectId(o));
                 probe.length = h.t;
                 probe.point = sr.org + sr.dir * h.t;
@@ -500,6 +653,66 @@ impl<'a> Tracer<'a> {
                 self.shade(&mut probe, self.scene.distant.get(d as usize)?.material);
             }
         }
+        participate(&mut probe);
         Some(probe.color)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::tests::IrBuilder;
+
+    fn hit_name(scene: &Scene, org: Vec3, dir: Vec3) -> String {
+        let t = Tracer::new(scene, Options::default());
+        match t.radiance(org, dir).hit {
+            Target::Object(o) => scene
+                .object(o.0)
+                .map(|o| o.name.clone())
+                .unwrap_or_default(),
+            _ => String::new(),
+        }
+    }
+
+    /// Radiance's `rayreject`: among coincident surfaces the later modifier wins, a
+    /// front face beats a back face, and a surface with a material beats one without.
+    #[test]
+    fn coincident_surfaces_break_ties_as_radiance() {
+        let mut b = IrBuilder::default();
+        let first = b.plastic("first", 0.2);
+        let second = b.plastic("second", 0.8);
+        b.square("early", first, 0.0, true);
+        b.square("late", second, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(hit_name(&scene, Vec3::new(0.2, 0.1, 1.0), -Vec3::Z), "late");
+
+        let mut b = IrBuilder::default();
+        let first = b.plastic("first", 0.2);
+        let second = b.plastic("second", 0.8);
+        b.square("front", first, 0.0, true);
+        b.square("back", second, 0.0, false);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(
+            hit_name(&scene, Vec3::new(0.2, 0.1, 1.0), -Vec3::Z),
+            "front"
+        );
+    }
+
+    /// Hits closer than `FTINY` are ignored: a ray leaving a surface does not hit it
+    /// again.
+    #[test]
+    fn hits_within_ftiny_are_ignored() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        b.square("floor", grey, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(
+            hit_name(&scene, Vec3::new(0.0, 0.0, 0.5 * FTINY), -Vec3::Z),
+            ""
+        );
+        assert_eq!(
+            hit_name(&scene, Vec3::new(0.0, 0.0, 2.0 * FTINY), -Vec3::Z),
+            "floor"
+        );
     }
 }

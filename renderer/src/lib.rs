@@ -11,6 +11,8 @@ pub mod picture;
 pub mod ray;
 pub mod scene;
 pub mod shapes;
+pub mod small_sources;
+pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};
 pub use scene::{Scene, Unsupported};

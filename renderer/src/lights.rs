@@ -4,6 +4,7 @@
 //! for smaller `-ds`, exactly as Radiance splits them, so sample directions and solid
 //! angles agree with rtrace.
 
+use crate::materials::light::Spot;
 use crate::math::{FHUGE, FTINY, Vec3, normalize, perpendicular};
 
 /// Radiance's `MAXSPART`: partitions per source, and the unit of partition coordinates.
@@ -23,6 +24,15 @@ pub enum SourceShape {
         v: Vec3,
         /// A disk: samples are pulled in toward the rim's circle.
         circular: bool,
+        /// Distance from the centre to the farthest point (`srad`).
+        radius: f64,
+    },
+    /// A cylinder: `half_axis` spans half its length from `center`; sampled along the
+    /// axis, seen with its projected area `2 r l`.
+    Cylinder {
+        center: Vec3,
+        half_axis: Vec3,
+        radius: f64,
     },
     /// A distant `source`: a unit direction and its solid angle.
     Distant { direction: Vec3, solid_angle: f64 },
@@ -34,8 +44,18 @@ pub struct Source {
     pub shape: SourceShape,
     /// `glow` sources only light points within this distance.
     pub proximity: Option<f64>,
-    /// The surface this source is: local object index or distant-source index.
+    /// `spotlight` sources only light points inside their cone.
+    pub spot: Option<Spot>,
+    /// The surface this source is: local object index or distant-source index (for a
+    /// virtual source, the mirror).
     pub target: SourceTarget,
+    /// A virtual source: the image of source `parent` in the mirror `target`.
+    pub parent: Option<usize>,
+    /// A distant virtual source only lights points whose shadow rays pass within the
+    /// mirror's disk: its centre and area (Radiance's distant `spotout`).
+    pub beam: Option<(Vec3, f64)>,
+    /// Radiance's sampling vectors (`ss`), carried through mirror images.
+    pub axes: [Vec3; 3],
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,6 +111,18 @@ impl SourceShape {
             u,
             v,
             circular: false,
+            radius: vertices
+                .iter()
+                .map(|p| p.distance(center))
+                .fold(0.0, f64::max),
+        }
+    }
+
+    pub fn cylinder(p0: Vec3, p1: Vec3, radius: f64) -> SourceShape {
+        SourceShape::Cylinder {
+            center: 0.5 * (p0 + p1),
+            half_axis: 0.5 * (p1 - p0),
+            radius,
         }
     }
 
@@ -104,6 +136,7 @@ impl SourceShape {
             u,
             v,
             circular: true,
+            radius,
         }
     }
 
@@ -123,16 +156,17 @@ impl SourceShape {
     }
 
     /// The centre and bounding radius (for `glow` proximity).
-    fn center_radius(&self) -> (Vec3, f64) {
+    pub(crate) fn center_radius(&self) -> (Vec3, f64) {
         match self {
             SourceShape::Sphere { center, radius } => (*center, *radius),
-            SourceShape::Flat { center, u, v, .. } => {
-                (*center, (*u + *v).length().max((*u - *v).length()))
-            }
+            SourceShape::Flat { center, radius, .. } => (*center, *radius),
             SourceShape::Distant {
                 direction,
                 solid_angle,
             } => (*direction, (solid_angle / std::f64::consts::PI).sqrt()),
+            SourceShape::Cylinder {
+                center, half_axis, ..
+            } => (*center, half_axis.length()),
         }
     }
 }
@@ -196,22 +230,53 @@ impl Source {
                 }
                 flat_parts(org, *center, *u, *v, weight, size_ratio)
             }
+            SourceShape::Cylinder {
+                center,
+                half_axis,
+                radius,
+            } if size_ratio > FTINY => {
+                match cylinder_parts(org, *center, *half_axis, *radius, weight, size_ratio) {
+                    Some(parts) => parts,
+                    None => return, // inside the cylinder's extent
+                }
+            }
             _ => vec![Part {
                 cent: [0; 3],
                 size: [MAXSPART; 3],
             }],
         };
         let np = parts.len();
+        let local = !matches!(self.shape, SourceShape::Distant { .. });
         for p in parts {
-            if let Some(s) = self.sample(org, p, np) {
-                if let Some(prox) = self.proximity
-                    && s.dist > prox
-                    && !matches!(self.shape, SourceShape::Distant { .. })
-                {
+            let Some(mut s) = self.sample(org, p, np) else {
+                continue;
+            };
+            if let Some(prox) = self.proximity
+                && s.dist > prox
+                && local
+            {
+                continue;
+            }
+            if let Some((center, area)) = self.beam
+                && !local
+            {
+                let to = center - org;
+                let along = s.dir.dot(to);
+                if std::f64::consts::PI * (to.length_squared() - along * along) > area {
                     continue;
                 }
-                out.push(s);
             }
+            if let Some(spot) = &self.spot
+                && local
+            {
+                if spot.excludes(s.dir) {
+                    continue;
+                }
+                // The solid angle as seen from the spot's virtual focus (srcray).
+                let d = s.dist + spot.focus;
+                s.omega *= s.dist * s.dist / (d * d);
+            }
+            out.push(s);
         }
     }
 
@@ -244,6 +309,7 @@ impl Source {
                 u,
                 v,
                 circular,
+                ..
             } => {
                 if *circular && np > 1 {
                     // Pull corner samples in toward the circle (srcsamp.c's trim for SCIR).
@@ -269,6 +335,32 @@ impl Source {
                     dist: d,
                 })
             }
+            SourceShape::Cylinder {
+                center,
+                half_axis,
+                radius,
+            } => {
+                let mut dir = *center + *half_axis * vpos[0] - org;
+                let d = normalize(&mut dir);
+                if d == 0.0 {
+                    return None;
+                }
+                // Cosine between the direction and the plane across the axis.
+                let along = dir.dot(*half_axis);
+                let dom = (1.0 - along * along / half_axis.length_squared())
+                    .max(0.0)
+                    .sqrt()
+                    * frac(0);
+                if dom <= 1e-4 {
+                    return None;
+                }
+                let area = 2.0 * radius * 2.0 * half_axis.length();
+                Some(SourceSample {
+                    dir,
+                    omega: dom * area / (d * d),
+                    dist: d,
+                })
+            }
             SourceShape::Distant {
                 direction,
                 solid_angle,
@@ -279,6 +371,63 @@ impl Source {
             }),
         }
     }
+}
+
+/// A cylinder source's partitions along its axis (`cylpart`): none for points within
+/// its extended radius (`None`), one for points very close to or far from it, else
+/// halvings while the point is nearer than `2 * weight / ds` half-lengths.
+fn cylinder_parts(
+    org: Vec3,
+    center: Vec3,
+    half_axis: Vec3,
+    radius: f64,
+    weight: f64,
+    ds: f64,
+) -> Option<Vec<Part>> {
+    // Radiance samples within a box around the cylinder: 0.8559 r is its half-width.
+    let rad2 = 1.365 * (0.8559 * radius).powi(2);
+    let v = org - center;
+    let axial = v.dot(half_axis);
+    let len2 = half_axis.length_squared();
+    let dist2_center = v.length_squared();
+    let radial2 = dist2_center - axial * axial / len2;
+    if radial2 <= rad2 {
+        return None;
+    }
+    let safe2 = len2 * 4.0 * weight * weight / (ds * ds);
+    let root = Part {
+        cent: [0; 3],
+        size: [MAXSPART; 3],
+    };
+    if radial2 <= 4.0 * rad2 || dist2_center >= safe2 {
+        return Some(vec![root]);
+    }
+    let mut out = Vec::new();
+    split_cylinder(&mut out, org, root, MAXSPART, center, half_axis, safe2);
+    Some(out)
+}
+
+fn split_cylinder(
+    out: &mut Vec<Part>,
+    org: Vec3,
+    part: Part,
+    mp: i32,
+    center: Vec3,
+    axis: Vec3,
+    d2: f64,
+) {
+    if mp < 2 || org.distance_squared(center) >= d2 {
+        out.push(part);
+        return;
+    }
+    let half = 0.5 * axis;
+    let mut lower = part;
+    lower.size[0] >>= 1;
+    let mut upper = lower;
+    lower.cent[0] -= lower.size[0];
+    upper.cent[0] += upper.size[0];
+    split_cylinder(out, org, lower, mp / 2, center - half, half, d2 * 0.25);
+    split_cylinder(out, org, upper, mp / 2, center + half, half, d2 * 0.25);
 }
 
 /// Recursive halving of a flat source (`flt_partit`): split the longer side while the
@@ -348,7 +497,11 @@ mod tests {
         Source {
             shape: SourceShape::polygon(&verts, -Vec3::Z, side * side),
             proximity: None,
+            spot: None,
             target: SourceTarget::Object(0),
+            parent: None,
+            beam: None,
+            axes: [Vec3::ZERO; 3],
         }
     }
 

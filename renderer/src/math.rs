@@ -83,6 +83,10 @@ impl Bounds {
         0.5 * (self.min + self.max)
     }
 
+    pub fn contains(&self, p: Vec3) -> bool {
+        p.cmpge(self.min).all() && p.cmple(self.max).all()
+    }
+
     pub fn surface_area(&self) -> f64 {
         let d = (self.max - self.min).max(Vec3::ZERO);
         2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)

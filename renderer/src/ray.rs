@@ -1,6 +1,6 @@
 //! Rays and what they hit.
 
-use crate::math::{FHUGE, Vec3};
+use crate::math::Vec3;
 
 /// Index of an object (a surface) in [`crate::scene::Scene::objects`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -31,22 +31,4 @@ pub struct ShapeHit {
     pub t: f64,
     pub normal: Vec3,
     pub rod: f64,
-}
-
-/// The nearest surface along a ray.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    pub object: ObjectId,
-    pub t: f64,
-    pub point: Vec3,
-    pub normal: Vec3,
-    pub rod: f64,
-}
-
-impl Hit {
-    /// What Radiance reports for a ray that hits nothing: length `FHUGE`, the point at
-    /// the origin.
-    pub fn missed_length() -> f64 {
-        FHUGE
-    }
 }

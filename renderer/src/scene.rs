@@ -6,15 +6,22 @@ use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
 use crate::lights::{Source, SourceShape, SourceTarget};
-use crate::materials::light::{Emitter, EmitterKind};
+use crate::materials::anisotropic::Anisotropic;
+use crate::materials::antimatter::Antimatter;
+use crate::materials::dielectric::Dielectric;
+use crate::materials::glass::Glass;
+use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
-use crate::materials::{Alternate, Material, MaterialId, metal, plastic};
-use crate::math::{Vec3, vec3};
+use crate::materials::mist::Mist;
+use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
+use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 
 /// A surface.
 #[derive(Clone, Debug)]
 pub struct Object {
+    /// The primitive this object was compiled from.
+    pub prim: PrimId,
     pub name: String,
     pub shape: Shape,
     pub material: Option<MaterialId>,
@@ -88,8 +95,17 @@ impl Scene {
         if !c.problems.is_empty() {
             return Err(c.problems);
         }
+        let (sources, illegal) = find_sources(&c.scene);
+        for i in illegal {
+            if let Some(prim) = c.scene.objects.get(i).map(|o| o.prim) {
+                c.unsupported(prim, "Radiance cannot use this shape as a light source");
+            }
+        }
+        if !c.problems.is_empty() {
+            return Err(c.problems);
+        }
         let mut scene = c.scene;
-        scene.sources = find_sources(&scene);
+        scene.sources = sources;
         let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
         scene.bvh = Bvh::build(&bounds);
         Ok(scene)
@@ -163,6 +179,7 @@ impl Compiler<'_> {
         let Some(shape) = shape else { return };
         let (material, material_name) = self.material_of(p.modifier);
         self.scene.objects.push(Object {
+            prim: id,
             name: p.name.clone(),
             shape,
             material,
@@ -239,7 +256,15 @@ impl Compiler<'_> {
                 spec: *spec,
                 rough: *rough,
                 metal: false,
+                transmission: None,
             }),
+            PrimKind::Trans {
+                color,
+                spec,
+                rough,
+                trans: tr,
+                tspec,
+            } => Material::Normal(trans::trans(rgb(color), *spec, *rough, *tr, *tspec)),
             PrimKind::Metal { color, spec, rough } => {
                 Material::Normal(metal::metal(rgb(color), *spec, *rough))
             }
@@ -248,6 +273,55 @@ impl Compiler<'_> {
                 Material::Mirror(Mirror {
                     color: rgb(color),
                     alternate,
+                })
+            }
+            PrimKind::Glass {
+                transmission,
+                index,
+            } => Material::Glass(Glass {
+                transmission: rgb(transmission),
+                index: *index,
+            }),
+            PrimKind::Dielectric {
+                transmission,
+                index,
+                hartmann,
+            } => {
+                if *hartmann != 0.0 {
+                    self.unsupported(
+                        kind,
+                        "dispersion (a non-zero Hartmann constant) is not rendered yet",
+                    );
+                    return None;
+                }
+                Material::Dielectric(Dielectric {
+                    inside: rgb(transmission),
+                    index: *index,
+                    outside: None,
+                })
+            }
+            PrimKind::Interface { t1, n1, t2, n2 } => Material::Dielectric(Dielectric {
+                inside: rgb(t1),
+                index: *n1 / *n2,
+                outside: Some(rgb(t2)),
+            }),
+            PrimKind::Antimatter { modifiers } => {
+                let mut ids = Vec::new();
+                for name in modifiers.iter().filter(|n| n.as_str() != "void") {
+                    if let Some(m) = self.named_ref(kind, name) {
+                        ids.push(i64::from(m.0));
+                    }
+                }
+                let face = match modifiers.first().map(String::as_str) {
+                    None | Some("void") => None,
+                    Some(name) => Some(
+                        self.named_ref(kind, name)
+                            .and_then(|m| self.compile_material(m)),
+                    ),
+                };
+                Material::Antimatter(Antimatter {
+                    modifiers: ids,
+                    face,
                 })
             }
             PrimKind::Light { color } => Material::Emitter(Emitter {
@@ -260,11 +334,76 @@ impl Compiler<'_> {
                     max_radius: *max_radius,
                 },
             }),
+            PrimKind::Spotlight {
+                color,
+                angle,
+                direction,
+            } => match Spot::new(*angle, vec3(*direction)) {
+                Some(spot) => Material::Emitter(Emitter {
+                    color: rgb(color),
+                    kind: EmitterKind::Spot(spot),
+                }),
+                None => {
+                    self.unsupported(kind, "a spotlight needs a positive angle and a direction");
+                    return None;
+                }
+            },
             PrimKind::Illum { alternate, color } => {
                 let alternate = self.alternate(kind, alternate.as_deref());
                 Material::Emitter(Emitter {
                     color: rgb(color),
                     kind: EmitterKind::Illum { alternate },
+                })
+            }
+            PrimKind::Other { reals, .. } if p.schema.name == "mist" => {
+                if reals.len() > 3 && reals[3..6.min(reals.len())].iter().any(|a| *a > FTINY) {
+                    self.unsupported(
+                        kind,
+                        "scattering mist (an albedo) is not rendered yet; absorbing mist is",
+                    );
+                    return None;
+                }
+                let e = |i: usize| reals.get(i).copied().unwrap_or(0.0);
+                let extinction = if reals.len() > 2 {
+                    Vec3::new(e(0), e(1), e(2))
+                } else {
+                    Vec3::ZERO
+                };
+                Material::Mist(Mist { extinction })
+            }
+            PrimKind::Other { strings, reals }
+                if matches!(p.schema.name, "plastic2" | "metal2" | "trans2") =>
+            {
+                let number = |i: usize| {
+                    strings
+                        .get(i)
+                        .and_then(|w| w.parse::<f64>().ok())
+                        .filter(|x| x.is_finite())
+                };
+                let (Some(ux), Some(uy), Some(uz)) = (number(0), number(1), number(2)) else {
+                    self.unsupported(
+                        kind,
+                        "orientation expressions are not evaluated yet (numbers are)",
+                    );
+                    return None;
+                };
+                if strings.len() > 4 {
+                    self.unsupported(kind, "transforms of the orientation are not applied yet");
+                    return None;
+                }
+                let real = |i: usize| reals.get(i).copied().unwrap_or(0.0);
+                if real(4) <= FTINY || real(5) <= FTINY {
+                    self.unsupported(kind, "roughness too small (Radiance refuses it)");
+                    return None;
+                }
+                Material::Anisotropic(Anisotropic {
+                    color: Vec3::new(real(0), real(1), real(2)),
+                    spec: real(3),
+                    u_rough: real(4),
+                    v_rough: real(5),
+                    orientation: Vec3::new(ux, uy, uz),
+                    metal: p.schema.name == "metal2",
+                    transmission: (p.schema.name == "trans2").then(|| (real(6), real(7))),
                 })
             }
             _ => {
@@ -291,6 +430,16 @@ impl Compiler<'_> {
         None
     }
 
+    /// The modifier `name` in `owner`'s string arguments, as the front end resolved it.
+    fn named_ref(&self, owner: PrimId, name: &str) -> Option<PrimId> {
+        self.ir
+            .get(owner)?
+            .refs
+            .iter()
+            .copied()
+            .find(|r| self.ir.get(*r).is_some_and(|q| q.name == name))
+    }
+
     fn alternate(&mut self, owner: PrimId, name: Option<&str>) -> Alternate {
         match name {
             None => Alternate::None,
@@ -312,14 +461,20 @@ impl Compiler<'_> {
 }
 
 /// Radiance's `marksources`: every surface whose material emits becomes a source,
-/// except glows with no radius of influence.
-fn find_sources(scene: &Scene) -> Vec<Source> {
+/// except glows with no radius of influence. Also returns the objects Radiance refuses
+/// as sources (cones, cups, tubes, rings with a hole: "illegal material").
+fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
+    let mut illegal = Vec::new();
     let emitter = |m: Option<MaterialId>| match m.and_then(|m| scene.material(m)) {
         Some(Material::Emitter(e)) if e.is_source() => Some(e.clone()),
         _ => None,
     };
     let proximity = |e: &Emitter| match e.kind {
         EmitterKind::Glow { max_radius } => Some(max_radius),
+        _ => None,
+    };
+    let spot = |e: &Emitter| match e.kind {
+        EmitterKind::Spot(s) => Some(s),
         _ => None,
     };
     let mut out = Vec::new();
@@ -331,14 +486,28 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
             Shape::Sphere(s) => SourceShape::sphere(s.center, s.radius),
             Shape::Polygon(p) => SourceShape::polygon(&p.vertices, p.normal, p.area),
             Shape::Ring(r) if r.r0 <= 0.0 => SourceShape::disk(r.center, r.normal, r.r1),
-            // Radiance refuses these as sources ("illegal material"); cylinders it
-            // samples along their length, which radc does not yet.
-            _ => continue,
+            Shape::Cone(c) if c.is_cylinder() && !c.inward => {
+                SourceShape::cylinder(c.p0, c.p1(), c.r0)
+            }
+            _ => {
+                illegal.push(i);
+                continue;
+            }
         };
+        // A flat spotlight aimed behind itself is skipped (with a warning in Radiance).
+        if let (Some(s), SourceShape::Flat { normal, .. }) = (spot(&e), &shape)
+            && !s.faces(*normal)
+        {
+            continue;
+        }
         out.push(Source {
+            axes: crate::virtuals::radiance_axes(&shape),
             shape,
             proximity: proximity(&e),
+            spot: spot(&e),
             target: SourceTarget::Object(i as u32),
+            parent: None,
+            beam: None,
         });
     }
     for (i, d) in scene.distant.iter().enumerate() {
@@ -349,14 +518,132 @@ fn find_sources(scene: &Scene) -> Vec<Source> {
         if matches!(e.kind, EmitterKind::Glow { .. }) {
             continue;
         }
+        let shape = SourceShape::Distant {
+            direction: d.direction,
+            solid_angle: d.solid_angle,
+        };
         out.push(Source {
-            shape: SourceShape::Distant {
-                direction: d.direction,
-                solid_angle: d.solid_angle,
-            },
+            axes: crate::virtuals::radiance_axes(&shape),
+            shape,
             proximity: None,
+            spot: None,
             target: SourceTarget::Distant(i as u32),
+            parent: None,
+            beam: None,
         });
     }
-    out
+    (out, illegal)
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use radc_lang::scene::ir::Prim;
+    use radc_lang::source::{FileId, Span};
+
+    /// Builds IR scenes by hand: the renderer's tests never go through text.
+    #[derive(Default)]
+    pub(crate) struct IrBuilder {
+        pub scene: ir::Scene,
+    }
+
+    impl IrBuilder {
+        pub fn add(
+            &mut self,
+            type_name: &str,
+            name: &str,
+            modifier: Option<u32>,
+            kind: PrimKind,
+        ) -> u32 {
+            let span = Span::new(FileId(0), 0..0);
+            self.scene.prims.push(Prim {
+                name: name.into(),
+                name_span: span,
+                modifier_span: span,
+                schema: radc_lang::schema::lookup(type_name).expect("a known type"),
+                modifier: modifier.map_or(ModRef::Void, |m| ModRef::Prim(PrimId(m))),
+                refs: Vec::new(),
+                transform: radc_lang::transform::Transform::IDENTITY,
+                kind,
+                span,
+            });
+            self.scene.prims.len() as u32 - 1
+        }
+
+        pub fn plastic(&mut self, name: &str, grey: f64) -> u32 {
+            self.add(
+                "plastic",
+                name,
+                None,
+                PrimKind::Plastic {
+                    color: [grey; 3],
+                    spec: 0.0,
+                    rough: 0.0,
+                },
+            )
+        }
+
+        pub fn square(&mut self, name: &str, modifier: u32, z: f64, up: bool) -> u32 {
+            let mut vertices = vec![
+                [-1.0, -1.0, z],
+                [1.0, -1.0, z],
+                [1.0, 1.0, z],
+                [-1.0, 1.0, z],
+            ];
+            if !up {
+                vertices.reverse();
+            }
+            self.add(
+                "polygon",
+                name,
+                Some(modifier),
+                PrimKind::Polygon { vertices },
+            )
+        }
+    }
+
+    #[test]
+    fn compiles_reachable_surfaces_and_their_sources() {
+        let mut b = IrBuilder::default();
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        b.add(
+            "sphere",
+            "bulb",
+            Some(lamp),
+            PrimKind::Sphere {
+                center: [0.0, 0.0, 3.0],
+                radius: 0.5,
+            },
+        );
+        let grey = b.plastic("grey", 0.5);
+        b.plastic("unused", 0.2);
+        b.square("floor", grey, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(scene.objects.len(), 2);
+        assert_eq!(
+            scene.materials.len(),
+            2,
+            "the unused material is not compiled"
+        );
+        assert_eq!(scene.sources.len(), 1);
+    }
+
+    #[test]
+    fn unsupported_types_are_listed_not_dropped() {
+        let mut b = IrBuilder::default();
+        let m = b.add(
+            "mist",
+            "fog",
+            None,
+            PrimKind::Other {
+                strings: Vec::new(),
+                reals: vec![0.1, 0.1, 0.1, 0.5, 0.5, 0.5],
+            },
+        );
+        b.square("cloud", m, 0.0, true);
+        let problems = Scene::compile(&b.scene).expect_err("scattering mist is not rendered yet");
+        assert_eq!(problems.len(), 1);
+        assert_eq!(problems[0].name, "fog");
+        assert_eq!(problems[0].type_name, "mist");
+    }
 }

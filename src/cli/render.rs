@@ -6,15 +6,15 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use radc_renderer::camera::{Projection, View};
-use radc_renderer::math::{Color, Vec3};
+use radc_renderer::camera::View;
+use radc_renderer::math::Color;
 use radc_renderer::{Options, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
 use super::trace::{load_scene, number, render_option};
 
-const USAGE: &str = "usage: radc render [-vt{v|l}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
+const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
 [-vv deg] [-x res] [-y res] [-pa aspect] [-ab 0] [-av r g b] [-o picture.hdr] scene.rad...";
 
 struct Args {
@@ -25,14 +25,21 @@ struct Args {
     options: Options,
     output: Option<PathBuf>,
     scenes: Vec<PathBuf>,
+    warnings: bool,
 }
 
-fn vector<'a>(it: &mut impl Iterator<Item = &'a str>, what: &str) -> Result<Vec3, String> {
-    Ok(Vec3::new(
-        number(it, what)?,
-        number(it, what)?,
-        number(it, what)?,
-    ))
+/// View options from a view file (`-vf`): any words of the file before its first
+/// empty line (so a picture's header works too), view options taken, the rest ignored.
+fn view_file(view: &mut View, path: &str) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read view file '{path}': {e}"))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let head = text.split("\n\n").next().unwrap_or("");
+    let words: Vec<&str> = head.split_whitespace().collect();
+    let mut i = 0;
+    while i < words.len() {
+        i += view.option(&words[i..])?.max(1);
+    }
+    Ok(())
 }
 
 fn parse_args(args: &[String]) -> Result<Args, String> {
@@ -45,26 +52,26 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         options: Options {
             source_size_ratio: 0.25,
             max_depth: 7,
+            relays: 1,
             ..Options::default()
         },
         output: None,
         scenes: Vec::new(),
+        warnings: true,
     };
-    let mut it = args.iter().map(String::as_str);
-    while let Some(arg) = it.next() {
-        match arg {
-            "-vtv" => a.view.projection = Projection::Perspective,
-            "-vtl" => a.view.projection = Projection::Parallel,
-            s if s.starts_with("-vt") => {
-                return Err(format!(
-                    "view type '{s}' is not supported yet (-vtv, -vtl are)"
-                ));
+    let words: Vec<&str> = args.iter().map(String::as_str).collect();
+    let mut it = words.iter().copied().enumerate().peekable();
+    while let Some((at, arg)) = it.next() {
+        let used = a.view.option(&words[at..])?;
+        if used > 0 {
+            for _ in 1..used {
+                it.next();
             }
-            "-vp" => a.view.position = vector(&mut it, arg)?,
-            "-vd" => a.view.direction = vector(&mut it, arg)?,
-            "-vu" => a.view.up = vector(&mut it, arg)?,
-            "-vh" => a.view.horizontal = number(&mut it, arg)?,
-            "-vv" => a.view.vertical = number(&mut it, arg)?,
+            continue;
+        }
+        let mut it = std::iter::from_fn(|| it.next().map(|(_, w)| w));
+        match arg {
+            "-vf" => view_file(&mut a.view, it.next().ok_or("-vf needs a file name")?)?,
             "-x" | "-y" => {
                 let v = number(&mut it, arg)?;
                 if !(1.0..=32767.0).contains(&v) {
@@ -82,6 +89,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 number(&mut it, arg)?;
             }
             "-o" => a.output = Some(PathBuf::from(it.next().ok_or("-o needs a file name")?)),
+            s if super::trace::switch(s, "-w", &mut a.warnings) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
             "-help" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),
@@ -95,6 +103,10 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
+    super::trace::with_deep_stacks(|| run_parsed(args))
+}
+
+fn run_parsed(args: &[String]) -> ExitCode {
     let a = match parse_args(args) {
         Ok(a) => a,
         Err(e) => {
@@ -112,12 +124,18 @@ pub fn run(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let scene = match load_scene(&a.scenes, "render") {
+    let mut scene = match load_scene(&a.scenes, "render", a.warnings) {
         Ok(s) => s,
         Err(code) => return code,
     };
+    scene.add_virtual_sources(a.options.relays);
     let (w, h) = camera.fit_resolution(a.x, a.y, a.pixel_aspect);
     let (w, h) = (w.max(1), h.max(1));
+    // The picture is held in memory: refuse sizes that cannot be.
+    if u64::from(w) * u64::from(h) > 1 << 28 {
+        eprintln!("radc render: a {w} by {h} picture is too large");
+        return ExitCode::from(USAGE_ERROR);
+    }
     let tracer = Tracer::new(&scene, a.options.clone());
     // Top row first; pixel centres at ((i + .5) / w, (j + .5) / h) with j counted upward.
     let pixels: Vec<Color> = (0..h)
@@ -126,14 +144,17 @@ pub fn run(args: &[String]) -> ExitCode {
             let j = h - 1 - row;
             let (camera, tracer) = (&camera, &tracer);
             (0..w).map(move |i| {
-                let (org, dir) = camera.ray(
-                    (f64::from(i) + 0.5) / f64::from(w),
-                    (f64::from(j) + 0.5) / f64::from(h),
-                );
-                tracer.radiance(org, dir).color
+                let x = (f64::from(i) + 0.5) / f64::from(w);
+                let y = (f64::from(j) + 0.5) / f64::from(h);
+                // Outside a fisheye's circle the picture is black.
+                camera.ray(x, y).map_or(Color::ZERO, |(org, dir, max)| {
+                    tracer.radiance_within(org, dir, max).color
+                })
             })
         })
         .collect();
+    let mut pixels = pixels;
+    radc_renderer::small_sources::draw(&tracer, &camera, w, h, 1.0, &mut pixels);
     let header = vec![
         format!("radc render {}", args.join(" ")),
         format!("SOFTWARE= radc {}", env!("CARGO_PKG_VERSION")),

@@ -3,8 +3,8 @@
 //! one ray per line; or binary `-ff`/`-fd`). Takes rtrace's options; the ones radc does
 //! not model yet are refused rather than silently ignored.
 //!
-//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`), no virtual
-//! sources (`-dr 0`) and no source jitter (`-dj 0`).
+//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`) and no source
+//! jitter (`-dj 0`); light relayed by mirrors (`-dr`) is included.
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
@@ -12,7 +12,7 @@ use std::process::ExitCode;
 
 use radc_lang::Severity;
 use radc_renderer::math::{Vec3, normalize};
-use radc_renderer::{Options, RayState, Scene, Target, Tracer};
+use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
@@ -29,6 +29,8 @@ enum Format {
     Ascii,
     Float,
     Double,
+    /// Output only: RGBE pixels (`-fac`, `-ffc`), with `-x -y` a picture.
+    Color,
 }
 
 impl Format {
@@ -37,6 +39,7 @@ impl Format {
             'a' => Some(Format::Ascii),
             'f' => Some(Format::Float),
             'd' => Some(Format::Double),
+            'c' => Some(Format::Color),
             _ => None,
         }
     }
@@ -46,6 +49,7 @@ impl Format {
             Format::Ascii => "ascii",
             Format::Float => "float",
             Format::Double => "double",
+            Format::Color => "32-bit_rle_rgbe",
         }
     }
 }
@@ -61,10 +65,16 @@ enum Output {
     SurfaceNormal,
     EffectiveLength,
     Length,
+    Mirrored,
+    MirroredLength,
+    Unmirrored,
+    UnmirroredLength,
     Surface,
     Modifier,
     Material,
     Tilde,
+    Weight,
+    LocalCoordinates,
 }
 
 impl Output {
@@ -83,13 +93,19 @@ impl Output {
                     'N' => Output::SurfaceNormal,
                     'l' => Output::EffectiveLength,
                     'L' => Output::Length,
+                    'r' => Output::Mirrored,
+                    'R' => Output::MirroredLength,
+                    'x' => Output::Unmirrored,
+                    'X' => Output::UnmirroredLength,
                     's' => Output::Surface,
                     'm' => Output::Modifier,
                     'M' => Output::Material,
                     '~' => Output::Tilde,
+                    'w' => Output::Weight,
+                    'c' => Output::LocalCoordinates,
                     _ => {
                         return Err(format!(
-                            "output '{c}' is not supported (radc knows v o d p n N l L s m M ~)"
+                            "output '{c}' is not supported (radc knows v o d p n N l L r R x X c w s m M ~)"
                         ));
                     }
                 })
@@ -104,6 +120,7 @@ impl Output {
             }
             Output::SurfaceNormal => 3,
             Output::Tilde => 0,
+            Output::LocalCoordinates => 2,
             _ => 1,
         }
     }
@@ -118,6 +135,13 @@ struct Args {
     output: Format,
     options: Options,
     scenes: Vec<PathBuf>,
+    /// `-x`, `-y`: a resolution line after the header, and the number of rays to read.
+    x_res: u32,
+    y_res: u32,
+    /// `-w`: report the scene's warnings (errors are always reported).
+    warnings: bool,
+    /// `-ld`: the length of each ray's direction limits how far it goes.
+    limit_distance: bool,
 }
 
 /// Radiance's boolean switches: `-x` toggles, `-x+` sets, `-x-` clears.
@@ -140,16 +164,33 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         output: Format::Ascii,
         options: Options::default(),
         scenes: Vec::new(),
+        x_res: 0,
+        y_res: 0,
+        warnings: true,
+        limit_distance: false,
     };
     let mut it = args.iter().map(String::as_str).peekable();
-    let mut warn_off = false;
     while let Some(arg) = it.next() {
         match arg {
             s if switch(s, "-h", &mut a.header) => {}
             s if switch(s, "-I", &mut a.irradiance) => {}
-            s if switch(s, "-w", &mut warn_off) => {}
-            "-n" | "-x" | "-y" => {
+            s if switch(s, "-w", &mut a.warnings) => {}
+            s if switch(s, "-ld", &mut a.limit_distance) => {}
+            "-n" => {
                 number(&mut it, arg)?;
+            }
+            "-x" | "-y" => {
+                let v = number(&mut it, arg)?;
+                let v = if (0.0..=f64::from(u32::MAX)).contains(&v) {
+                    v as u32
+                } else {
+                    0
+                };
+                if arg == "-x" {
+                    a.x_res = v;
+                } else {
+                    a.y_res = v;
+                }
             }
             s if switch(s, "-i", &mut a.options.irradiance_at_hits) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
@@ -174,6 +215,18 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         return Err("no scene files".into());
     }
     Ok(a)
+}
+
+/// Runs `f` in a rayon pool whose threads have room for long ray chains (mirrors,
+/// stacks of pass-through surfaces: up to `MAX_CHAIN` nested evaluations).
+pub(super) fn with_deep_stacks(f: impl FnOnce() -> ExitCode + Send) -> ExitCode {
+    match rayon::ThreadPoolBuilder::new()
+        .stack_size(256 << 20)
+        .build()
+    {
+        Ok(pool) => pool.install(f),
+        Err(_) => f(),
+    }
 }
 
 /// The next argument as a finite number.
@@ -213,18 +266,37 @@ pub(super) fn render_option<'a>(
         "-lr" => o.max_depth = number(it, "-lr")? as i32,
         "-lw" => o.min_weight = number(it, "-lw")?,
         "-st" => o.specular_threshold = number(it, "-st")?,
-        // Accepted for compatibility: radc tests every shadow (-dt 0), has no virtual
-        // sources (-dr 0), and the rest only matter for indirect light.
-        "-dt" | "-dc" | "-dr" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
+        // Accepted for compatibility: radc tests every shadow (-dt 0), always follows
+        // relayed paths (-dp), and the rest only matter for indirect light.
+        "-dr" => o.relays = number(it, "-dr")?.max(0.0) as u32,
+        "-me" => {
+            o.medium = Vec3::new(number(it, "-me")?, number(it, "-me")?, number(it, "-me")?)
+                .max(Vec3::ZERO)
+        }
+        "-ma" => {
+            let albedo = [number(it, "-ma")?, number(it, "-ma")?, number(it, "-ma")?];
+            if albedo.iter().any(|a| *a > 0.0) {
+                return Err("a scattering medium (-ma > 0) is not implemented yet; -me is".into());
+            }
+        }
+        "-mg" | "-ms" => {
             number(it, arg)?;
         }
-        s if s.starts_with("-u") || s.starts_with("-dv") => {}
+        "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
+            number(it, arg)?;
+        }
+        s if switch(s, "-dv", &mut o.direct_visible) => {}
+        s if s.starts_with("-u") => {}
         _ => return Ok(false),
     }
     Ok(true)
 }
 
 pub fn run(args: &[String]) -> ExitCode {
+    super::trace::with_deep_stacks(|| run_parsed(args))
+}
+
+fn run_parsed(args: &[String]) -> ExitCode {
     let a = match parse_args(args) {
         Ok(a) => a,
         Err(e) => {
@@ -235,10 +307,11 @@ pub fn run(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let scene = match load_scene(&a.scenes, "trace") {
+    let mut scene = match load_scene(&a.scenes, "trace", a.warnings) {
         Ok(s) => s,
         Err(code) => return code,
     };
+    scene.add_virtual_sources(a.options.relays);
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     if a.header {
@@ -251,15 +324,32 @@ pub fn run(args: &[String]) -> ExitCode {
             a.output.name()
         );
     }
+    if a.x_res > 0 && a.y_res > 0 {
+        let _ = writeln!(out, "-Y {} +X {}", a.y_res, a.x_res);
+    }
+    // With -y, rtrace stops after a picture's worth of rays.
+    let mut remaining: Option<u64> = match (a.x_res, a.y_res) {
+        (_, 0) => None,
+        (x, y) if x > 1 => Some(u64::from(x) * u64::from(y)),
+        (_, y) => Some(u64::from(y)),
+    };
     let tracer = Tracer::new(&scene, a.options.clone());
     let stdin = std::io::stdin();
     let mut input = RayReader::new(BufReader::new(stdin.lock()), a.input);
     let mut last = (Vec3::ZERO, Vec3::ZERO);
     loop {
-        let (batch, flush, done) = input.batch(BATCH);
+        let want = remaining.map_or(BATCH, |n| (n as usize).min(BATCH));
+        if want == 0 {
+            break;
+        }
+        let (batch, flush, mut done) = input.batch(want);
+        if let Some(n) = remaining.as_mut() {
+            *n -= (batch.len() + usize::from(flush)) as u64;
+            done |= *n == 0;
+        }
         let results: Vec<RayState> = batch
             .par_iter()
-            .map(|&(org, dir)| evaluate(&tracer, org, dir, a.irradiance))
+            .map(|&(org, dir)| evaluate(&tracer, org, dir, &a))
             .collect();
         for r in &results {
             write_ray(&mut out, r, &scene, &a);
@@ -282,34 +372,49 @@ pub fn run(args: &[String]) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, irradiance: bool) -> RayState {
-    normalize(&mut dir);
-    if irradiance {
+fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args) -> RayState {
+    let length = normalize(&mut dir);
+    if a.irradiance {
         tracer.irradiance(org, dir)
     } else {
-        tracer.radiance(org, dir)
+        // -ld: the direction's length is how far the ray may go.
+        tracer.radiance_within(org, dir, if a.limit_distance { length } else { 0.0 })
     }
 }
 
-/// Reads the scene files as one scene, reports their diagnostics on stderr, and
-/// compiles it; scenes with errors, or with things radc cannot render, are refused.
-pub(super) fn load_scene(paths: &[PathBuf], command: &str) -> Result<Scene, ExitCode> {
+/// Reads the scene files as one scene, reports their diagnostics on stderr (warnings
+/// only if asked), and compiles it; scenes with errors, or with things radc cannot
+/// render, are refused.
+pub(super) fn load_scene(
+    paths: &[PathBuf],
+    command: &str,
+    warnings: bool,
+) -> Result<Scene, ExitCode> {
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let ir = super::check::check_scene(paths, false, &mut sources, &mut diags);
     diags.sort_by_key(|d| (d.span.file, d.span.start));
-    report::eprint(&diags, &sources);
-    // A scene with an unexpanded `!` command is incomplete: rendering it would
-    // silently leave out whatever the command makes.
-    let unexpanded = diags.iter().any(|d| d.code == radc_lang::diagnostic::W0303);
-    if unexpanded {
-        eprintln!(
-            "radc {command}: the scene runs commands radc does not build in; nothing rendered"
-        );
-        return Err(ExitCode::from(1));
+    // A `!` command's output is part of the scene Radiance renders; without it the
+    // numbers would be silently wrong.
+    let unexpanded = diags
+        .iter()
+        .filter(|d| d.code.id == radc_lang::diagnostic::W0303.id)
+        .count();
+    if !warnings {
+        diags.retain(|d| {
+            d.severity == Severity::Error || d.code.id == radc_lang::diagnostic::W0303.id
+        });
     }
+    report::eprint(&diags, &sources);
     if diags.iter().any(|d| d.severity == Severity::Error) {
         eprintln!("radc {command}: the scene has errors; nothing rendered");
+        return Err(ExitCode::from(1));
+    }
+    if unexpanded > 0 {
+        eprintln!(
+            "radc {command}: the scene has {unexpanded} '!' command line(s) radc does not run, so \
+             it would render without what they make; run them and include their output"
+        );
         return Err(ExitCode::from(1));
     }
     Scene::compile(&ir).map_err(|problems| {
@@ -379,6 +484,8 @@ impl<R: BufRead> RayReader<R> {
             return None;
         }
         let r = match self.format {
+            // Refused by the option parser: nothing to read.
+            Format::Color => None,
             Format::Ascii => self.next_word(),
             Format::Float => {
                 let mut b = [0u8; 4];
@@ -409,7 +516,7 @@ impl<R: BufRead> RayReader<R> {
             }
             for w in self.line.split_whitespace() {
                 // rtrace stops at the first word that is not a number.
-                let Ok(x) = w.parse::<f64>() else {
+                let Some(x) = radiance_number(w) else {
                     self.words.push_back(f64::NAN);
                     break;
                 };
@@ -417,6 +524,28 @@ impl<R: BufRead> RayReader<R> {
             }
         }
         self.words.pop_front().filter(|x| !x.is_nan())
+    }
+}
+
+/// A word in Radiance's real-number syntax (`[+-]digits[.digits][e[+-]digits]`, or
+/// starting with the point): no `inf`, `nan` or hex, which Rust would otherwise accept.
+fn radiance_number(w: &str) -> Option<f64> {
+    let body = w.strip_prefix(['+', '-']).unwrap_or(w);
+    let (mantissa, exponent) = match body.find(['e', 'E']) {
+        Some(i) => (&body[..i], Some(&body[i + 1..])),
+        None => (body, None),
+    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
+    let ok_mantissa = digits(int) && digits(frac) && !(int.is_empty() && frac.is_empty());
+    let ok_exponent = exponent.is_none_or(|e| {
+        let e = e.strip_prefix(['+', '-']).unwrap_or(e);
+        !e.is_empty() && digits(e)
+    });
+    if ok_mantissa && ok_exponent {
+        w.parse().ok()
+    } else {
+        None
     }
 }
 
@@ -448,6 +577,10 @@ fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
             ),
             Output::EffectiveLength => put(out, a.output, &[r.effective_length()]),
             Output::Length => put(out, a.output, &[r.length]),
+            Output::Mirrored => put(out, a.output, &r.mirror_color.to_array()),
+            Output::MirroredLength => put(out, a.output, &[r.mirror_length]),
+            Output::Unmirrored => put(out, a.output, &(r.color - r.mirror_color).to_array()),
+            Output::UnmirroredLength => put(out, a.output, &[r.other_length]),
             Output::Surface | Output::Modifier | Output::Material => {
                 let name = names(r, scene, *o);
                 let _ = write!(out, "{name}\t");
@@ -455,6 +588,9 @@ fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
             Output::Tilde => {
                 let _ = write!(out, "~\t");
             }
+            Output::Weight => put(out, a.output, &[r.weight]),
+            // Local (u, v) coordinates: zero for every surface but meshes in Radiance.
+            Output::LocalCoordinates => put(out, a.output, &[0.0, 0.0]),
         }
     }
     if a.output == Format::Ascii {
@@ -488,6 +624,10 @@ fn put(out: &mut impl Write, f: Format, v: &[f64]) {
             .iter()
             .try_for_each(|x| out.write_all(&(*x as f32).to_ne_bytes())),
         Format::Double => v.iter().try_for_each(|x| out.write_all(&x.to_ne_bytes())),
+        Format::Color => match v {
+            [r, g, b] => out.write_all(&picture::rgbe(Vec3::new(*r, *g, *b))),
+            _ => Ok(()),
+        },
     };
 }
 
@@ -519,6 +659,33 @@ mod tests {
         assert_eq!(c_exp(3.141718), "3.141718e+00");
         assert_eq!(c_exp(-1.5e-120), "-1.500000e-120");
         assert_eq!(c_exp(9.9999999e9), "1.000000e+10");
+    }
+
+    #[test]
+    fn numbers_in_radiance_syntax_only() {
+        for (w, v) in [
+            ("1", 1.0),
+            ("-2.5", -2.5),
+            (".5", 0.5),
+            ("5.", 5.0),
+            ("1e3", 1e3),
+            ("+1.5E-2", 0.015),
+        ] {
+            assert_eq!(radiance_number(w), Some(v), "{w}");
+        }
+        for w in [
+            "nan",
+            "inf",
+            "-infinity",
+            "0x10",
+            ".",
+            "e5",
+            "1e",
+            "1.2.3",
+            "",
+        ] {
+            assert_eq!(radiance_number(w), None, "{w}");
+        }
     }
 
     #[test]

@@ -6,8 +6,8 @@ answers (tests/data/trace/<id>.out), plus tests/data/trace/cases.json listing ev
 case. tests/trace_differential.rs runs `radc trace` on the same rays and compares.
 
 Options: every case runs rtrace deterministically: no ambient bounces (-ab 0), no
-source jitter (-dj 0), every shadow tested (-dt 0), no virtual sources (-dr 0), and no
-randomized source orientation (-u-).
+source jitter (-dj 0), every shadow tested (-dt 0), no randomized source orientation
+(-u-), and no virtual sources (-dr 0) unless a case asks for relays through mirrors.
 
     python tests/oracle/regen_trace_goldens.py           # rewrite the goldens
     python tests/oracle/regen_trace_goldens.py --check   # fail if any would change
@@ -107,6 +107,16 @@ def mirror_rays(rng):
     return rays
 
 
+def limited(rays, rng):
+    """The same rays with directions scaled to random lengths (for -ld)."""
+    out = []
+    for r in rays:
+        n = math.sqrt(sum(x * x for x in r[3:]))
+        k = rng.choice([.5, 1, 2, 4, 8, 50]) / n
+        out.append(r[:3] + [x * k for x in r[3:]])
+    return out
+
+
 def shift(rays, by):
     return [[r[0] + by[0], r[1] + by[1], r[2] + by[2]] + r[3:] for r in rays]
 
@@ -172,6 +182,82 @@ def cases():
     case("hard-mirrors-lr3", "hard.rad", ["-lr", "3"], mirrors, "-ov")
     # A positive -lr: below -lw rtrace would otherwise play (random) Russian roulette.
     case("hard-mirrors-lw", "hard.rad", ["-lr", "10", "-lw", ".3"], mirrors, "-ov")
+    spot_view = box_rays(rng, 50, [-3, -3, 1], [3, 3, 3.5], toward=[0, 0, 0], spread=3)
+    case("spots-view", "spots.rad", [], spot_view, "-ovL")
+    case(
+        "spots-irradiance",
+        "spots.rad",
+        ["-I"],
+        irradiance_points(rng, 40, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
+    )
+    trans_view = box_rays(rng, 50, [-3, -3, .5], [3, 3, 3.5], toward=[0, 0, 1], spread=2.5)
+    case("trans-view", "trans.rad", ["-av", ".1", ".1", ".1"], trans_view, "-ovlL")
+    case(
+        "trans-irradiance",
+        "trans.rad",
+        ["-I"],
+        irradiance_points(rng, 40, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]) + [[-2.5, 2.5, .35, 0, 0, 1]],
+    )
+    case("trans-hit-irradiance", "trans.rad", ["-i"], trans_view[:25], "-ov")
+    refl = [[x + .5, .5, 1, 0, dy, dz] for x in (0, 2, 4, 6) for dy, dz in ((0, -1), (.5, -1), (3, -.5), (-1, -1))]
+    refl += box_rays(rng, 30, [-1, -1, .5], [8, 2, 2], toward=[3.5, .5, 0], spread=3.5)
+    case("reflections-parts", "reflections.rad", ["-av", ".1", ".1", ".1"], refl, "-ovrRxXlLwc")
+    glass_view = box_rays(rng, 50, [-3, -3, .5], [3, 3, 3.5], toward=[0, 0, 1], spread=2.5)
+    case("glass-view", "glass.rad", ["-av", ".1", ".1", ".1"], glass_view, "-ovrRxXlL")
+    case(
+        "glass-irradiance",
+        "glass.rad",
+        ["-I"],
+        irradiance_points(rng, 40, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
+    )
+    case("glass-hit-irradiance", "glass.rad", ["-i"], glass_view[:25], "-ov")
+    die_view = box_rays(rng, 60, [-3, -3, .5], [3, 3, 3.5], toward=[0, -.5, .6], spread=2)
+    # A positive -lr: rays inside the ball fall below -lw, where rtrace would otherwise
+    # play (random) Russian roulette.
+    case("dielectric-view", "dielectric.rad", ["-lr", "12", "-av", ".1", ".1", ".1"], die_view, "-ovrRxXlL")
+    case(
+        "dielectric-irradiance",
+        "dielectric.rad",
+        ["-I"],
+        irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]),
+    )
+    tube_pts = irradiance_points(rng, 30, [-1.4, -.9, .8], [1.4, .9, .8], [(0, 0, 1), (.3, 0, .95)])
+    tube_pts += irradiance_points(rng, 20, [-4, -4, 0], [4, 4, 0], [(0, 0, 1)])
+    tube_pts += [[0, 0, 1.9, 0, 0, 1], [0, .05, 2, 0, 1, 0], [1.5, 0, 2, -1, 0, 0], [0, 0, 1.2, 0, 0, 1]]
+    case("tube_lamp-irradiance", "tube_lamp.rad", ["-I"], tube_pts)
+    case("tube_lamp-irradiance-ds05", "tube_lamp.rad", ["-I", "-ds", ".05"], tube_pts)
+    case("tube_lamp-view", "tube_lamp.rad", [], box_rays(rng, 30, [-2, -2, 1], [2, 2, 3], toward=[0, 0, .8], spread=1.5), "-ovL")
+    # light relayed by mirrors (virtual sources): one mirror, and two facing mirrors
+    case("emitters-relay", "emitters.rad", ["-I", "-dr", "2"],
+         irradiance_points(rng, 40, [-3.8, -3, 0], [0, 3, 1.5], [(0, 0, 1), (-1, 0, 0), (-.6, .3, .7)]))
+    case("emitters-relay-view", "emitters.rad", ["-dr", "1"], em_view, "-ovL")
+    relay_pts = irradiance_points(rng, 40, [3.5, -1.5, 0], [4.45, 1.5, 2.5], [(1, 0, 0), (.5, 0, .8), (0, 0, 1)])
+    case("hard-relay", "hard.rad", ["-I", "-dr", "2"], relay_pts)
+    case("hard-relay-dr3", "hard.rad", ["-I", "-dr", "3"], relay_pts)
+    mirror_pts = irradiance_points(rng, 50, [-3.5, -3.5, 0], [3.5, 3.5, 0], [(0, 0, 1)])
+    mirror_pts += irradiance_points(rng, 20, [-1, .9, .2], [1, .9, 1.4], [(0, -1, 0)])
+    for dr in ("0", "1", "2", "3"):
+        case("mirrors-relay-dr" + dr, "mirrors.rad", ["-I", "-dr", dr], mirror_pts)
+    case("mirrors-view", "mirrors.rad", ["-dr", "2"], box_rays(rng, 40, [-2, -2, .5], [2, 2, 2]), "-ovL")
+    anti_view = box_rays(rng, 40, [-1, -1, 3], [2, 2, 4], toward=[.5, .3, 1.2], spread=.9)
+    anti_view += box_rays(rng, 30, [-4.5, -4.5, 1], [-1.5, -1.5, 3], toward=[-3, -3, -.5], spread=.8)
+    anti_view += box_rays(rng, 20, [-3, -3, .5], [3, 3, 1.2], toward=[.5, .3, 1.75], spread=.3)
+    case("antimatter-view", "antimatter.rad", ["-av", ".05", ".05", ".05"], anti_view, "-ovLN")
+    anti_pts = irradiance_points(rng, 30, [-.5, -.7, 0], [1.5, 1.3, 0], [(0, 0, 1)])
+    anti_pts += irradiance_points(rng, 20, [-4, -4, -2], [-2, -2, -2], [(0, 0, 1)])
+    case("antimatter-irradiance", "antimatter.rad", ["-I"], anti_pts)
+    aniso_view = box_rays(rng, 50, [-3, -3, 1], [3, 3, 3], toward=[0, 0, 0], spread=2)
+    aniso_view += box_rays(rng, 20, [-1, -2, .5], [1, 0, 1.5], toward=[0, 1, 1], spread=.8)
+    case("aniso-view", "aniso.rad", ["-av", ".05", ".05", ".05"], aniso_view, "-ovL")
+    case("aniso-hit-irradiance", "aniso.rad", ["-i"], aniso_view[:30], "-ov")
+    mist_view = box_rays(rng, 40, [-3, -3, .5], [3, 3, 3.5], toward=[0, 0, 1.5], spread=2.5)
+    mist_view += box_rays(rng, 15, [2.2, 2.2, .3], [3.8, 3.8, 1.7])  # inside the fog
+    case("mist-view", "mist.rad", ["-av", ".05", ".05", ".05"], mist_view, "-ovlL")
+    case("mist-irradiance", "mist.rad", ["-I"], irradiance_points(rng, 30, [-3, -3, 0], [3, 3, 0], [(0, 0, 1)]))
+    case("medium-view", "dielectric.rad", ["-me", ".05", ".1", ".2", "-lr", "12"], die_view[:30], "-ovL")
+    case("emitters-invisible-sources", "emitters.rad", ["-dv-", "-dr", "1"], em_view, "-ov")
+    case("glass-limited", "glass.rad", ["-ld"], limited(glass_view, rng), "-ovL")
+    case("distant-limited", "distant.rad", ["-ld"], limited(box_rays(rng, 40, [-5, -5, .5], [5, 5, 4]), rng), "-ovL")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
     return out
 

@@ -5,7 +5,7 @@
 
 use super::Alternate;
 use crate::integrator::{RayKind, RayState, Tracer};
-use crate::math::{Color, FTINY};
+use crate::math::{Color, FTINY, Vec3, normalize};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Emitter {
@@ -24,6 +24,54 @@ pub enum EmitterKind {
     Illum {
         alternate: Alternate,
     },
+    /// `spotlight`: light only within a cone around `aim`.
+    Spot(Spot),
+}
+
+/// A spotlight's cone (srcsupp.c's `makespot`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spot {
+    /// Solid angle of the cone.
+    pub size: f64,
+    /// Unit direction of the cone's axis.
+    pub aim: Vec3,
+    /// Length of the given direction vector: a virtual focus this far behind the light.
+    pub focus: f64,
+}
+
+impl Spot {
+    /// `None` for a zero angle or direction (Radiance: "zero angle", "zero focus").
+    pub fn new(angle_deg: f64, mut direction: Vec3) -> Option<Spot> {
+        if angle_deg <= FTINY {
+            return None;
+        }
+        let focus = normalize(&mut direction);
+        if focus == 0.0 {
+            return None;
+        }
+        let half = std::f64::consts::PI / 180.0 / 2.0 * angle_deg;
+        Some(Spot {
+            size: 2.0 * std::f64::consts::PI * (1.0 - half.cos()),
+            aim: direction,
+            focus,
+        })
+    }
+
+    /// Whether a ray travelling along `dir` toward the light is outside the cone
+    /// (`spotout`).
+    pub fn excludes(&self, dir: Vec3) -> bool {
+        self.size < 2.0 * std::f64::consts::PI * (1.0 + self.aim.dot(dir))
+    }
+
+    /// A flat spotlight must aim in front of its surface (`checkspot`).
+    pub fn faces(&self, normal: Vec3) -> bool {
+        let d = self.aim.dot(normal);
+        if d > FTINY {
+            return true;
+        }
+        let d1 = 1.0 - self.size / (2.0 * std::f64::consts::PI);
+        1.0 - FTINY - d * d < d1 * d1
+    }
 }
 
 impl Emitter {
@@ -71,10 +119,24 @@ impl Emitter {
             }
             return;
         }
+        // `-dv-`: sources are invisible except to shadow rays (and glows too far away to
+        // light anything are seen as usual).
+        if !t.options().direct_visible
+            && !r.kind.any(RayKind::SHADOW)
+            && !self.distant_glow(r.path_length + r.length)
+        {
+            r.coef = Color::ZERO;
+            return;
+        }
         if r.rod < 0.0 {
             if !t.options().backface_visible {
                 t.transmit(r);
             }
+            return;
+        }
+        if let EmitterKind::Spot(spot) = &self.kind
+            && spot.excludes(r.dir)
+        {
             return;
         }
         r.color = self.color;

@@ -10,6 +10,7 @@ pub fn metal(color: Color, spec: f64, rough: f64) -> Normal {
         spec,
         rough,
         metal: true,
+        transmission: None,
     }
 }
 

@@ -1,10 +1,16 @@
 //! Materials: what a ray sees where it hits. Each file reproduces one of Radiance's
 //! shading routines; `Material` is the closed set the renderer models so far.
 
+pub mod anisotropic;
+pub mod antimatter;
+pub mod dielectric;
+pub mod glass;
 pub mod light;
 pub mod metal;
 pub mod mirror;
+pub mod mist;
 pub mod plastic;
+pub mod trans;
 
 use crate::math::Color;
 
@@ -17,6 +23,13 @@ pub enum Material {
     /// `plastic` and `metal`: Radiance's "normal" materials (normal.c).
     Normal(plastic::Normal),
     Mirror(mirror::Mirror),
+    Glass(glass::Glass),
+    /// `dielectric` and `interface`.
+    Dielectric(dielectric::Dielectric),
+    Antimatter(antimatter::Antimatter),
+    /// `plastic2`, `metal2`, `trans2`.
+    Anisotropic(anisotropic::Anisotropic),
+    Mist(mist::Mist),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
 }
@@ -32,10 +45,25 @@ pub enum Alternate {
 }
 
 impl Material {
+    /// Radiance's `istransp`: transmitting types lose ties to opaque ones.
+    pub fn is_transparent(&self) -> bool {
+        match self {
+            Material::Normal(n) => n.is_transparent(),
+            Material::Glass(_) | Material::Dielectric(_) | Material::Mist(_) => true,
+            Material::Anisotropic(a) => a.transmission.is_some(),
+            _ => false,
+        }
+    }
+
     pub fn color(&self) -> Color {
         match self {
             Material::Normal(n) => n.color,
             Material::Mirror(m) => m.color,
+            Material::Glass(g) => g.transmission,
+            Material::Dielectric(d) => d.inside,
+            Material::Antimatter(_) => Color::ZERO,
+            Material::Anisotropic(a) => a.color,
+            Material::Mist(m) => m.extinction,
             Material::Emitter(e) => e.color,
         }
     }

@@ -1,9 +1,10 @@
-//! `plastic` (and, through [`super::metal`], `metal`): Radiance's "normal" material
-//! (normal.c). A diffuse part coloured by the material plus Ward's isotropic Gaussian
-//! highlight (Siggraph '92), uncoloured for plastic. Surfaces are two-sided: a ray
-//! hitting the back sees the front's reflection with the normal flipped. Smooth
-//! surfaces (`rough^2 <= FTINY`) trace a mirror ray instead of a highlight and, above a
-//! specularity of 0.018, follow a Fresnel estimate.
+//! `plastic` (and, through [`super::metal`] and [`super::trans`], `metal` and `trans`):
+//! Radiance's "normal" material (normal.c). A diffuse part coloured by the material plus
+//! Ward's isotropic Gaussian highlight (Siggraph '92), uncoloured for plastic; `trans`
+//! adds diffuse and specular transmission. Surfaces are two-sided: a ray hitting the
+//! back sees the front's reflection with the normal flipped. Smooth surfaces
+//! (`rough^2 <= FTINY`) trace a mirror (and a straight-through) ray instead of a
+//! highlight and, above a specularity of 0.018, follow a Fresnel estimate.
 
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, FTINY, Vec3, normalize, perpendicular};
@@ -22,6 +23,9 @@ pub struct Normal {
     pub spec: f64,
     pub rough: f64,
     pub metal: bool,
+    /// `trans` only: the transmitted fraction of what is not reflected specularly, and
+    /// the specular fraction of that.
+    pub transmission: Option<(f64, f64)>,
 }
 
 /// What a hit on a normal material works out once, for the ambient, specular and
@@ -30,18 +34,31 @@ pub struct Shading {
     color: Color,
     specular: Color,
     normal: Vec3,
+    pdot: f64,
     alpha2: f64,
     rdiff: f64,
     rspec: f64,
+    trans: f64,
+    tdiff: f64,
+    tspec: f64,
     pure: bool,
     has_highlight: bool,
+    /// Rough specular transmission (sampled only above `-st`, else folded into the
+    /// diffuse transmission).
+    has_rough_transmission: bool,
     flat: bool,
     ray_dir: Vec3,
 }
 
 impl Normal {
+    /// Transparent types win no ties against opaque ones (`istransp`).
+    pub fn is_transparent(&self) -> bool {
+        self.transmission.is_some()
+    }
+
     pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
-        if r.kind.any(RayKind::SHADOW) {
+        let shadow = r.kind.any(RayKind::SHADOW);
+        if shadow && self.transmission.is_none() {
             return; // opaque to shadow rays
         }
         if r.rod < 0.0 {
@@ -52,21 +69,35 @@ impl Normal {
             r.flip();
         }
         let s = self.setup(t, r);
+        if s.tspec > FTINY && s.pure {
+            self.straight_ray(t, r, &s);
+        }
+        if shadow {
+            return;
+        }
         if s.rspec > FTINY && s.pure {
             self.mirror_ray(t, r, &s);
         }
-        if s.pure && s.rdiff <= FTINY {
+        if s.pure && s.rdiff <= FTINY && s.tdiff <= FTINY {
             return;
         }
-        if s.has_highlight && s.rspec > t.options().specular_threshold + FTINY {
+        let threshold = t.options().specular_threshold + FTINY;
+        if s.has_highlight && s.rspec > threshold {
             self.specular_sample(t, r, &s);
         }
         if s.rdiff > FTINY {
             let mut amb = s.color * s.rdiff;
-            if s.has_highlight && s.rspec <= t.options().specular_threshold + FTINY {
+            if s.has_highlight && s.rspec <= threshold {
                 amb += s.specular;
             }
             r.color += amb * t.options().ambient;
+        }
+        if s.tdiff > FTINY {
+            // Ambient from the other side; a rough transmission below the threshold
+            // counts as diffuse.
+            let below = s.has_rough_transmission && s.tspec <= threshold;
+            let k = if below { s.trans } else { s.tdiff };
+            r.color += s.color * k * t.options().ambient;
         }
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
@@ -81,6 +112,13 @@ impl Normal {
             fest = fresnel(pdot);
             rspec += fest * (1.0 - rspec);
         }
+        let (trans, tspec) = match self.transmission {
+            Some((tr, ts)) => {
+                let trans = tr * (1.0 - rspec);
+                (trans, trans * ts)
+            }
+            None => (0.0, 0.0),
+        };
         let specular = if self.metal {
             super::metal::specular_color(self.color, self.spec, rspec, fest)
         } else {
@@ -90,13 +128,36 @@ impl Normal {
             color: self.color,
             specular,
             normal: r.normal,
+            pdot,
             alpha2,
-            rdiff: 1.0 - rspec,
+            rdiff: 1.0 - trans - rspec,
             rspec,
+            trans,
+            tdiff: trans - tspec,
+            tspec,
             pure,
             has_highlight: rspec > FTINY && !pure,
+            has_rough_transmission: tspec > FTINY && !pure,
             flat: r.hit_is_flat(t.scene()),
             ray_dir: r.dir,
+        }
+    }
+
+    /// A smooth transmitting surface passes light straight through, tinted.
+    fn straight_ray(&self, t: &Tracer<'_>, r: &mut RayState, s: &Shading) {
+        let coef = s.color * s.tspec;
+        let Some(mut child) = t.spawn(r, RayKind::TRANS, Some(coef)) else {
+            return;
+        };
+        child.dir = r.dir;
+        t.trace(&mut child);
+        r.color += child.color * child.coef;
+        if s.tspec >= 1.0 - FTINY {
+            r.mirror_color = child.mirror_color * child.coef;
+            r.mirror_length = r.length + child.mirror_length;
+            r.other_length = r.length + child.other_length;
+        } else if s.tspec > s.tdiff + s.rdiff {
+            r.other_length = r.length + child.effective_length();
         }
     }
 
@@ -105,21 +166,21 @@ impl Normal {
         let Some(mut child) = t.spawn(r, RayKind::REFLECTED, Some(s.specular)) else {
             return;
         };
-        child.dir = r.dir + s.normal * (2.0 * r.rod.max(0.001));
+        child.dir = r.dir + s.normal * (2.0 * s.pdot);
         normalize(&mut child.dir);
         t.trace(&mut child);
         let c = child.color * child.coef;
         r.mirror_color = c;
         r.color += c;
+        // rtrace 6.0 (measured) reports the surface's own distance for a reflection
+        // off a normal material, flat or not; `mirror` adds the reflected distance.
         r.mirror_length = r.length;
-        if s.flat {
-            r.mirror_length += child.effective_length();
-        }
     }
 
     /// A rough highlight above the `-st` threshold is sampled by one ray. Radiance
     /// draws it at random; radc takes the median of the Gaussian at a fixed azimuth so
-    /// results are repeatable (they differ from rtrace's random sample).
+    /// results are repeatable (they differ from rtrace's random sample). Rough
+    /// transmission above the threshold is not sampled yet.
     fn specular_sample(&self, t: &Tracer<'_>, r: &mut RayState, s: &Shading) {
         let Some(u) = perpendicular(s.normal) else {
             return;
@@ -141,20 +202,31 @@ impl Normal {
 }
 
 impl Shading {
-    /// The coefficient turning a source's radiance into reflected radiance, for a source
-    /// sample in direction `ldir` of solid angle `omega` (normal.c's `dirnorm`).
+    /// The coefficient turning a source's radiance into reflected (or transmitted)
+    /// radiance, for a source sample in direction `ldir` of solid angle `omega`
+    /// (normal.c's `dirnorm`).
     pub fn source_coefficient(&self, ldir: Vec3, omega: f64) -> Color {
         let ldot = self.normal.dot(ldir);
         let mut out = Color::ZERO;
-        if ldot < 0.0 {
-            return out; // no transmission
+        let wrong_side = if ldot < 0.0 {
+            self.trans <= FTINY
+        } else {
+            self.trans >= 1.0 - FTINY
+        };
+        if wrong_side {
+            return out;
         }
-        let mut lrdiff = self.rdiff;
-        if self.pure && self.rspec >= FRESNEL_THRESHOLD && lrdiff > FTINY {
-            lrdiff *= 1.0 - fresnel(ldot.abs());
+        let (mut lrdiff, mut ltdiff) = (self.rdiff, self.tdiff);
+        if self.pure && self.rspec >= FRESNEL_THRESHOLD && (lrdiff > FTINY || ltdiff > FTINY) {
+            let k = 1.0 - fresnel(ldot.abs());
+            lrdiff *= k;
+            ltdiff *= k;
         }
         if ldot > FTINY && lrdiff > FTINY {
             out += self.color * (ldot * omega * lrdiff / PI);
+        }
+        if ldot < -FTINY && ltdiff > FTINY {
+            out += self.color * (-ldot * omega * ltdiff / PI);
         }
         if ldot > FTINY && self.has_highlight {
             let mut a2 = self.alpha2;
@@ -168,6 +240,13 @@ impl Shading {
             let g = (-d4 / a2).exp() * d3 / (PI * d2 * d2 * a2);
             if g > FTINY {
                 out += self.specular * (g * ldot * omega);
+            }
+        }
+        if ldot < -FTINY && self.has_rough_transmission {
+            let a2 = self.alpha2 + omega / PI;
+            let g = ((2.0 * self.ray_dir.dot(ldir) - 2.0) / a2).exp() / (PI * a2);
+            if g > FTINY {
+                out += self.color * (g * self.tspec * omega * (-ldot / self.pdot).sqrt());
             }
         }
         out

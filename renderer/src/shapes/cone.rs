@@ -40,7 +40,16 @@ impl Cone {
         })
     }
 
-    pub fn intersect(&self, ray: &Ray, _tmax: f64) -> Option<ShapeHit> {
+    /// Equal radii: a cylinder (or tube).
+    pub fn is_cylinder(&self) -> bool {
+        (self.r0 - self.r1).abs() <= FTINY
+    }
+
+    pub fn p1(&self) -> Vec3 {
+        self.p1
+    }
+
+    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
         let k = (self.r1 - self.r0) / self.length;
         let w = ray.org - self.p0;
         let (hw, hd) = (w.dot(self.axis), ray.dir.dot(self.axis));
@@ -99,13 +108,13 @@ mod tests {
     fn cylinder_side_hit() {
         let c = Cone::new(Vec3::ZERO, Vec3::Z * 2.0, 1.0, 1.0, false).unwrap();
         let h = c
-            .intersect(&Ray::new(Vec3::new(5.0, 0.0, 1.0), -Vec3::X), f64::INFINITY)
+            .intersect(&Ray::new(Vec3::new(5.0, 0.0, 1.0), -Vec3::X))
             .unwrap();
         assert!((h.t - 4.0).abs() < 1e-12);
         assert!((h.normal - Vec3::X).length() < 1e-12);
         // Past the end cap: miss.
         assert!(
-            c.intersect(&Ray::new(Vec3::new(5.0, 0.0, 3.0), -Vec3::X), f64::INFINITY)
+            c.intersect(&Ray::new(Vec3::new(5.0, 0.0, 3.0), -Vec3::X))
                 .is_none()
         );
     }
@@ -114,7 +123,7 @@ mod tests {
     fn cone_normal_tilts_toward_narrow_end() {
         let c = Cone::new(Vec3::ZERO, Vec3::Z, 1.0, 0.0, false).unwrap();
         let h = c
-            .intersect(&Ray::new(Vec3::new(5.0, 0.0, 0.5), -Vec3::X), f64::INFINITY)
+            .intersect(&Ray::new(Vec3::new(5.0, 0.0, 0.5), -Vec3::X))
             .unwrap();
         assert!((h.t - 4.5).abs() < 1e-12);
         let s = 0.5f64.sqrt();
@@ -129,7 +138,7 @@ mod tests {
     fn tube_from_inside_faces_the_ray() {
         let c = Cone::new(Vec3::ZERO, Vec3::Z * 2.0, 1.0, 1.0, true).unwrap();
         let h = c
-            .intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::X), f64::INFINITY)
+            .intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::X))
             .unwrap();
         assert!(h.rod > 0.0);
     }

@@ -25,12 +25,12 @@ pub enum Shape {
 impl Shape {
     /// The nearest hit with `FTINY < t`, or `None`. Candidates farther than the current
     /// best are filtered by the caller (the BVH), which also breaks ties.
-    pub fn intersect(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
+    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
         match self {
             Shape::Sphere(s) => s.intersect(ray),
             Shape::Polygon(p) => p.intersect(ray),
             Shape::Ring(r) => r.intersect(ray),
-            Shape::Cone(c) => c.intersect(ray, tmax),
+            Shape::Cone(c) => c.intersect(ray),
         }
     }
 

@@ -15,9 +15,10 @@ pub struct Polygon {
     pub area: f64,
     /// The axis the normal is most aligned with; the inside test drops it.
     axis: usize,
-    /// The vertex mean, and the vertices relative to it, for the inside test.
+    /// The vertex mean.
     center: Vec3,
-    local: Vec<Vec3>,
+    /// Bounding box grown by `FTINY` (and rounding): hits outside it are refused.
+    extent: Bounds,
 }
 
 /// `a` and `b` equal within `FTINY` relative (Radiance's `FRELEQ`).
@@ -57,7 +58,10 @@ impl Polygon {
             axis = 2;
         }
         let center = vertices.iter().copied().sum::<Vec3>() / vertices.len() as f64;
-        let local = vertices.iter().map(|v| *v - center).collect();
+        let extent = vertices
+            .iter()
+            .fold(Bounds::EMPTY, |b, v| b.union(Bounds::point(*v)))
+            .padded();
         Some(Polygon {
             vertices,
             normal,
@@ -65,7 +69,7 @@ impl Polygon {
             area,
             axis,
             center,
-            local,
+            extent,
         })
     }
 
@@ -78,7 +82,8 @@ impl Polygon {
         if t <= FTINY || !t.is_finite() {
             return None;
         }
-        self.contains(ray.at(t)).then_some(ShapeHit {
+        let p = ray.at(t);
+        (self.extent.contains(p) && self.contains(p)).then_some(ShapeHit {
             t,
             normal: self.normal,
             rod,
@@ -86,23 +91,23 @@ impl Polygon {
     }
 
     /// Whether a point of the plane lies inside (edges included), by counting the
-    /// polygon's edges crossing the ray from `p` along the projection's +x axis.
+    /// polygon's edges crossing the ray from `p` along the projection's +x axis, with
+    /// Radiance's tolerances (`inface`).
     ///
-    /// Radiance's edge tolerance is relative to the coordinates' magnitude, so far from
-    /// the origin it grows past the polygon's own size (a point 0.1 outside a polygon at
-    /// x = 250000 counts as on its edge; Radiance's octree hides this by clipping hits to
-    /// cells). radc measures coordinates from the polygon's centre instead, which keeps
-    /// the same answers near the origin and the right ones far from it.
+    /// Those tolerances are relative to the coordinates' magnitude, so far from the
+    /// origin they grow past the polygon's own size (a point 0.1 outside a polygon at
+    /// x = 250000 counts as on its edge). Radiance's octree hides this by clipping hits
+    /// to its cells; radc clips them to the polygon's bounding box (`extent`), which
+    /// changes nothing near the origin.
     pub fn contains(&self, p: Vec3) -> bool {
         let xi = (self.axis + 1) % 3;
         let yi = (xi + 1) % 3;
-        let p = p - self.center;
         let (x, y) = (p[xi], p[yi]);
-        let n = self.local.len();
+        let n = self.vertices.len();
         let mut odd = false;
         for i in 0..n {
-            let a = self.local[(i + n - 1) % n];
-            let b = self.local[i];
+            let a = self.vertices[(i + n - 1) % n];
+            let b = self.vertices[i];
             let (ax, ay, bx, by) = (a[xi], a[yi], b[xi], b[yi]);
             // A horizontal edge through the point that spans it.
             if rel_eq(ay, y) && rel_eq(by, y) && ((ax > x) != (bx > x)) {
@@ -140,10 +145,7 @@ impl Polygon {
     }
 
     pub fn bounds(&self) -> Bounds {
-        self.vertices
-            .iter()
-            .fold(Bounds::EMPTY, |b, v| b.union(Bounds::point(*v)))
-            .padded()
+        self.extent
     }
 }
 

@@ -1,0 +1,179 @@
+//! `plastic2`, `metal2` and `trans2` (aniso.c): the normal.c model with an elliptical
+//! Gaussian highlight, rougher along one surface direction than across it. The
+//! direction comes from three expressions; radc takes them when they are numbers.
+
+use crate::integrator::{RayKind, RayState, Tracer};
+use crate::math::{Color, FTINY, Vec3, normalize, perpendicular};
+use std::f64::consts::PI;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Anisotropic {
+    pub color: Color,
+    pub spec: f64,
+    pub u_rough: f64,
+    pub v_rough: f64,
+    /// The direction of `u_rough` before projection onto the surface.
+    pub orientation: Vec3,
+    pub metal: bool,
+    /// `trans2`: transmitted fraction and its specular part.
+    pub transmission: Option<(f64, f64)>,
+}
+
+struct Shading {
+    color: Color,
+    specular: Color,
+    normal: Vec3,
+    pdot: f64,
+    u: Vec3,
+    v: Vec3,
+    u_alpha: f64,
+    v_alpha: f64,
+    rdiff: f64,
+    trans: f64,
+    tdiff: f64,
+    tspec: f64,
+    reflects: bool,
+    transmits: bool,
+    flat: bool,
+    ray_dir: Vec3,
+}
+
+impl Anisotropic {
+    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+        if r.kind.any(RayKind::SHADOW) {
+            return; // opaque to shadow rays, even trans2
+        }
+        if r.rod < 0.0 {
+            if !t.options().backface_visible {
+                return t.transmit(r);
+            }
+            r.flip();
+        }
+        let s = self.setup(t, r);
+        let threshold = t.options().specular_threshold + FTINY;
+        // Highlights above -st are sampled at random by Radiance; radc does not sample
+        // them (its result then lacks that part).
+        if s.rdiff > FTINY {
+            let mut amb = s.color * s.rdiff;
+            if s.reflects && self.spec <= threshold {
+                amb += s.specular;
+            }
+            r.color += amb * t.options().ambient;
+        }
+        if s.tdiff > FTINY {
+            let k = if s.transmits && s.tspec <= threshold {
+                s.trans
+            } else {
+                s.tdiff
+            };
+            r.color += s.color * k * t.options().ambient;
+        }
+        t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
+    }
+
+    fn setup(&self, t: &Tracer<'_>, r: &RayState) -> Shading {
+        let rspec = self.spec;
+        let reflects = rspec > FTINY;
+        let specular = if self.metal {
+            self.color * rspec
+        } else {
+            Color::splat(rspec)
+        };
+        let (trans, tspec) = match self.transmission {
+            Some((tr, ts)) => {
+                let trans = tr * (1.0 - rspec);
+                (trans, trans * ts)
+            }
+            None => (0.0, 0.0),
+        };
+        let normal = r.normal;
+        let (mut u_alpha, mut v_alpha) = (self.u_rough, self.v_rough);
+        // The frame: v across the projected orientation, u along it (`getacoords`).
+        let mut v = normal.cross(self.orientation);
+        let u = if normalize(&mut v) == 0.0 {
+            let u = perpendicular(normal).unwrap_or(Vec3::X);
+            v = normal.cross(u);
+            let a = (0.5 * (u_alpha * u_alpha + v_alpha * v_alpha)).sqrt();
+            (u_alpha, v_alpha) = (a, a);
+            u
+        } else {
+            v.cross(normal)
+        };
+        Shading {
+            color: self.color,
+            specular,
+            normal,
+            pdot: r.rod.max(0.001),
+            u,
+            v,
+            u_alpha,
+            v_alpha,
+            rdiff: 1.0 - trans - rspec,
+            trans,
+            tdiff: trans - tspec,
+            tspec,
+            reflects,
+            transmits: tspec > FTINY,
+            flat: r.hit_is_flat(t.scene()),
+            ray_dir: r.dir,
+        }
+    }
+}
+
+impl Shading {
+    /// aniso.c's `diraniso`.
+    fn source_coefficient(&self, ldir: Vec3, omega: f64) -> Color {
+        let ldot = self.normal.dot(ldir);
+        let mut out = Color::ZERO;
+        let wrong_side = if ldot < 0.0 {
+            self.trans <= FTINY
+        } else {
+            self.trans >= 1.0 - FTINY
+        };
+        if wrong_side {
+            return out;
+        }
+        if ldot > FTINY && self.rdiff > FTINY {
+            out += self.color * (ldot * omega * self.rdiff / PI);
+        }
+        if ldot < -FTINY && self.tdiff > FTINY {
+            out += self.color * (-ldot * omega * self.tdiff / PI);
+        }
+        if ldot > FTINY && self.reflects {
+            let extra = if self.flat { omega * (0.25 / PI) } else { 0.0 };
+            let au2 = extra + self.u_alpha * self.u_alpha;
+            let av2 = extra + self.v_alpha * self.v_alpha;
+            let h = ldir - self.ray_dir;
+            let du = self.u.dot(h).powi(2) / au2;
+            let dv = self.v.dot(h).powi(2) / av2;
+            let hn = self.normal.dot(h).powi(2);
+            let g =
+                (-(du + dv) / hn).exp() * h.length_squared() / (PI * hn * hn * (au2 * av2).sqrt());
+            if g > FTINY {
+                out += self.specular * (g * ldot * omega);
+            }
+        }
+        if ldot < -FTINY && self.transmits {
+            let au2 = omega / PI + self.u_alpha * self.u_alpha;
+            let av2 = omega / PI + self.v_alpha * self.v_alpha;
+            let h = ldir - self.ray_dir;
+            let mut d = h.length_squared();
+            if d > FTINY * FTINY {
+                let hn = h.dot(self.normal);
+                d = 1.0 - hn * hn / d;
+            }
+            let mut g = if d > FTINY * FTINY {
+                let du = h.dot(self.u).powi(2) / au2;
+                let dv = h.dot(self.v).powi(2) / av2;
+                (-(du + dv) / d).exp()
+            } else {
+                1.0
+            };
+            g *= (1.0 / PI) * (-ldot / (self.pdot * au2 * av2)).sqrt();
+            if g > FTINY {
+                out += self.color * (g * self.tspec * omega);
+            }
+        }
+        out
+    }
+}

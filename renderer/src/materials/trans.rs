@@ -1,0 +1,15 @@
+//! `trans`: the normal.c model with part of the light passing through, diffusely and
+//! specularly (`trans` and `tspec` of the arguments).
+
+use super::plastic::Normal;
+use crate::math::Color;
+
+pub fn trans(color: Color, spec: f64, rough: f64, trans: f64, tspec: f64) -> Normal {
+    Normal {
+        color,
+        spec,
+        rough,
+        metal: false,
+        transmission: Some((trans, tspec)),
+    }
+}
