@@ -9,9 +9,11 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use radc_lang::scene::{self, FileLookup, LowerInput};
+use std::sync::Arc;
+
+use radc_lang::db::{self, AuxFiles, Database};
 use radc_lang::schema::FileKind;
-use radc_lang::{Diagnostic, FileId, Severity};
+use radc_lang::{Diagnostic, Severity};
 
 use super::USAGE_ERROR;
 use super::report::{self, Format, Sources};
@@ -71,6 +73,7 @@ pub fn run(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
+    let mut db = Database::new(Arc::new(SearchPath::from_env()));
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let mut scene_files = Vec::new();
@@ -80,14 +83,14 @@ pub fn run(args: &[String]) -> ExitCode {
             collect_scenes(path, &mut found);
             found.sort();
             for f in found {
-                check_scene(&[f], &mut sources, &mut diags);
+                check_scene(&mut db, &[f], &mut sources, &mut diags);
             }
         } else {
             scene_files.push(path.clone());
         }
     }
     if !scene_files.is_empty() {
-        check_scene(&scene_files, &mut sources, &mut diags);
+        check_scene(&mut db, &scene_files, &mut sources, &mut diags);
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
@@ -126,89 +129,69 @@ fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Reads, parses and lowers `paths` in order as one scene.
-fn check_scene(paths: &[PathBuf], sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
-    let mut parsed = Vec::new();
-    let mut dirs = Vec::new();
+/// Reads `paths` and checks them in order as one scene, through the database the
+/// language server uses too.
+fn check_scene(
+    db: &mut Database,
+    paths: &[PathBuf],
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let mut files = Vec::new();
     for path in paths {
         let name = path.display().to_string();
-        let bytes = match std::fs::read(path) {
-            Ok(b) => b,
+        match std::fs::read(path) {
+            Ok(bytes) => {
+                let file = db.add_file(name.clone(), String::new());
+                let id = file.id(db);
+                let (text, found) = radc_lang::source::decode(id, &bytes);
+                diags.extend(found);
+                db.set_text(file, text.clone());
+                let added = sources.add(name, text);
+                debug_assert_eq!(added, id);
+                files.push(file);
+            }
             Err(e) => {
-                let file = sources.add(name.clone(), String::new());
+                let id = db.add_file(name.clone(), String::new()).id(db);
+                let added = sources.add(name.clone(), String::new());
+                debug_assert_eq!(added, id);
                 diags.push(Diagnostic::new(
                     radc_lang::diagnostic::E0305,
-                    radc_lang::Span::new(file, 0..0),
+                    radc_lang::Span::new(id, 0..0),
                     format!("cannot read '{name}': {e}"),
                 ));
-                continue;
             }
-        };
-        let file = FileId(sources_len(sources));
-        let (text, mut found) = radc_lang::source::decode(file, &bytes);
-        let id = sources.add(name, text);
-        debug_assert_eq!(id, file);
-        let text = sources.get(id).map(|s| s.text.clone()).unwrap_or_default();
-        let (syntax, syntax_diags) = scene::parse(id, &text);
-        found.extend(syntax_diags);
-        diags.extend(found);
-        let warn_unused = path.extension().is_none_or(|x| x != "mat");
-        dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
-        parsed.push((id, syntax, warn_unused));
+        }
     }
-    let inputs: Vec<LowerInput<'_>> = parsed
-        .iter()
-        .map(|(file, syntax, warn_unused)| LowerInput {
-            file: *file,
-            syntax,
-            warn_unused: *warn_unused,
-        })
-        .collect();
-    let lookup = SearchPath::new(dirs);
-    let (_scene, more) = scene::lower(&inputs, &lookup);
-    diags.extend(more);
-}
-
-fn sources_len(sources: &Sources) -> u32 {
-    let mut n = 0;
-    while sources.get(FileId(n)).is_some() {
-        n += 1;
-    }
-    n
+    let set = db.scene_set(files);
+    diags.extend(db::check_scene_set(db, set).iter().cloned());
 }
 
 /// Finds auxiliary files as Radiance does, plus the scene's own folder: absolute
 /// paths as they are; otherwise the folder of the scene file that names it, the
 /// current folder, then each folder of RAYPATH.
 struct SearchPath {
-    scene_dirs: Vec<(FileId, PathBuf)>,
     raypath: Vec<PathBuf>,
 }
 
 impl SearchPath {
-    fn new(scene_dirs: Vec<(FileId, PathBuf)>) -> Self {
+    fn from_env() -> Self {
         let raypath = std::env::var_os("RAYPATH")
             .map(|v| std::env::split_paths(&v).collect())
             .unwrap_or_default();
-        SearchPath {
-            scene_dirs,
-            raypath,
-        }
+        SearchPath { raypath }
     }
 }
 
-impl FileLookup for SearchPath {
-    fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
+impl AuxFiles for SearchPath {
+    fn exists(&self, name: &str, _kind: FileKind, scene_path: &Path) -> bool {
         let p = Path::new(name);
         if p.is_absolute() {
             return p.exists();
         }
-        let scene_dir = self
-            .scene_dirs
-            .iter()
-            .find(|(f, _)| *f == from)
-            .map(|(_, d)| d.clone());
-        scene_dir
+        scene_path
+            .parent()
+            .map(Path::to_path_buf)
             .into_iter()
             .chain(std::iter::once(PathBuf::from(".")))
             .chain(self.raypath.iter().cloned())

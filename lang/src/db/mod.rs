@@ -11,7 +11,8 @@
 mod queries;
 
 pub use queries::{
-    ParsedScene, check_scene, format_scene, line_index, modifier_scope, parse_scene,
+    ParsedScene, check_scene, check_scene_set, format_scene, line_index, modifier_scope,
+    parse_scene,
 };
 
 use std::path::Path;
@@ -32,6 +33,13 @@ pub struct SourceFile {
     /// Whether unused modifiers are worth a warning (not in `.mat` libraries).
     #[returns(copy)]
     pub warn_unused: bool,
+}
+
+/// Files read in order as one scene, as `oconv` reads its arguments (materials first,
+/// then the geometry that uses them).
+#[salsa::input(debug)]
+pub struct SceneSet {
+    pub files: Vec<SourceFile>,
 }
 
 /// What the database knows of the file system: only a generation number, bumped by
@@ -124,6 +132,11 @@ impl Database {
             id
         };
         SourceFile::new(self, id, path, text.into(), warn_unused)
+    }
+
+    /// Groups files to be checked together, in order.
+    pub fn scene_set(&mut self, files: Vec<SourceFile>) -> SceneSet {
+        SceneSet::new(self, files)
     }
 
     /// Replaces a file's text (a new revision: dependent queries re-run on demand).

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use super::{Db, FileSystem, SourceFile};
+use super::{Db, FileSystem, SceneSet, SourceFile};
 use crate::diagnostic::Diagnostic;
 use crate::scene::scope::ModifierScope;
 use crate::scene::syntax::SceneFile;
@@ -54,26 +54,36 @@ pub fn modifier_scope(db: &dyn Db, file: SourceFile) -> ModifierScope {
 /// reports them (same codes, messages and order).
 #[salsa::tracked(returns(ref), no_eq)]
 pub fn check_scene(db: &dyn Db, file: SourceFile) -> Vec<Diagnostic> {
-    let parsed = parse_scene(db, file);
+    check_files(db, &[file])
+}
+
+/// Every diagnostic for files read in order as one scene (`radc check a.mat b.rad`).
+#[salsa::tracked(returns(ref), no_eq)]
+pub fn check_scene_set(db: &dyn Db, set: SceneSet) -> Vec<Diagnostic> {
+    check_files(db, set.files(db))
+}
+
+fn check_files(db: &dyn Db, files: &[SourceFile]) -> Vec<Diagnostic> {
     // The lookup below reads the disk through the front end: depend on its generation.
     if let Some(fs) = FileSystem::try_get(db) {
         fs.generation(db);
     }
-    let id = file.id(db);
-    let lookup = DbLookup {
-        db,
-        file: id,
-        path: Path::new(file.path(db)),
-    };
-    let (_scene, more) = scene::lower(
-        &[LowerInput {
-            file: id,
-            syntax: &parsed.syntax,
-            warn_unused: file.warn_unused(db),
-        }],
-        &lookup,
-    );
-    let mut all = parsed.diagnostics.clone();
+    let parsed: Vec<&ParsedScene> = files.iter().map(|f| parse_scene(db, *f)).collect();
+    let inputs: Vec<LowerInput<'_>> = files
+        .iter()
+        .zip(&parsed)
+        .map(|(f, p)| LowerInput {
+            file: f.id(db),
+            syntax: &p.syntax,
+            warn_unused: f.warn_unused(db),
+        })
+        .collect();
+    let lookup = DbLookup { db, files };
+    let (_scene, more) = scene::lower(&inputs, &lookup);
+    let mut all: Vec<Diagnostic> = parsed
+        .iter()
+        .flat_map(|p| p.diagnostics.iter().cloned())
+        .collect();
     all.extend(more);
     all.sort_by_key(|d| (d.span.file, d.span.start));
     all
@@ -89,15 +99,18 @@ pub fn format_scene(db: &dyn Db, file: SourceFile) -> Option<String> {
 
 struct DbLookup<'a> {
     db: &'a dyn Db,
-    file: FileId,
-    path: &'a Path,
+    files: &'a [SourceFile],
 }
 
 impl FileLookup for DbLookup<'_> {
+    /// Searches from the folder of the file that names `name`.
     fn exists(&self, name: &str, kind: FileKind, from: FileId) -> bool {
-        // Only one file is lowered at a time, so every name comes from it.
-        debug_assert_eq!(from, self.file);
-        self.db.aux_files().exists(name, kind, self.path)
+        let path = self
+            .files
+            .iter()
+            .find(|f| f.id(self.db) == from)
+            .map_or("", |f| f.path(self.db).as_str());
+        self.db.aux_files().exists(name, kind, Path::new(path))
     }
 }
 
@@ -147,6 +160,22 @@ mod tests {
         let log = db.take_log();
         assert_eq!(parses(&log), 0, "{log:?}");
         assert!(log.iter().any(|l| l.starts_with("check_scene")), "{log:?}");
+    }
+
+    #[test]
+    fn a_scene_set_resolves_across_files_and_tracks_each() {
+        let mut db = Database::default();
+        let mat = db.add_file("a.mat", MATERIAL);
+        let geo = db.add_file("b.rad", "red sphere ball\n0\n0\n4 0 0 0 1\n");
+        let set = db.scene_set(vec![mat, geo]);
+        assert!(check_scene_set(&db, set).is_empty());
+        // Alone, the geometry's modifier is undefined.
+        let alone: Vec<_> = check_scene(&db, geo).iter().map(|d| d.code.id).collect();
+        assert_eq!(alone, ["E0301"]);
+        db.enable_logging();
+        db.set_text(geo, "red sphere ball\n0\n0\n4 0 0 0 2\n");
+        assert!(check_scene_set(&db, set).is_empty());
+        assert_eq!(parses(&db.take_log()), 1);
     }
 
     #[test]
