@@ -180,9 +180,13 @@ fn workspace() -> Workspace {
 }
 
 fn initialize(client: &mut Client, options: Value) -> Value {
+    initialize_with(client, options, json!({}))
+}
+
+fn initialize_with(client: &mut Client, options: Value, capabilities: Value) -> Value {
     let result = client.request(
         "initialize",
-        json!({"processId": null, "rootUri": null, "capabilities": {}, "initializationOptions": options}),
+        json!({"processId": null, "rootUri": null, "capabilities": capabilities, "initializationOptions": options}),
     );
     client.notify("initialized", json!({}));
     result
@@ -452,7 +456,12 @@ fn inlay_hints_follow_the_setting() {
     let ws = workspace();
     let uri = ws.uri.as_str();
     let mut client = Client::start();
-    initialize(&mut client, json!({"inlayHints": {"enabled": false}}));
+    let refresh = json!({"workspace": {"inlayHint": {"refreshSupport": true}}});
+    initialize_with(
+        &mut client,
+        json!({"inlayHints": {"enabled": false}}),
+        refresh,
+    );
     open(&mut client, uri, TIDY);
     client.notification("textDocument/publishDiagnostics");
     let params = json!({"textDocument": {"uri": uri}, "range": range(0, 0, 9, 0)});
@@ -465,6 +474,11 @@ fn inlay_hints_follow_the_setting() {
         json!({"settings": {"radc": {"inlayHints": {"enabled": true}}}}),
     );
     client.notification("textDocument/publishDiagnostics");
+    // The client asked to be told to refresh its hints (a request, answered by the harness).
+    assert_eq!(
+        client.notification("workspace/inlayHint/refresh"),
+        Value::Null
+    );
     let hints = client.request("textDocument/inlayHint", params);
     assert_eq!(hints.as_array().map(Vec::len), Some(9));
     client.shutdown();

@@ -9,6 +9,7 @@
 //! handler that panics (a bug) answers "nothing" instead of taking the server down.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use tower_lsp_server::jsonrpc::Result;
@@ -24,6 +25,8 @@ pub struct Backend {
     client: Client,
     session: Mutex<Session>,
     publishing: tokio::sync::Mutex<()>,
+    /// Whether the client asks for `workspace/inlayHint/refresh` after a settings change.
+    refresh_inlay_hints: AtomicBool,
 }
 
 impl Backend {
@@ -32,6 +35,7 @@ impl Backend {
             client,
             session: Mutex::new(Session::default()),
             publishing: tokio::sync::Mutex::new(()),
+            refresh_inlay_hints: AtomicBool::new(false),
         }
     }
 
@@ -90,6 +94,14 @@ fn capabilities() -> ServerCapabilities {
 
 impl LanguageServer for Backend {
     async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        let refresh = params
+            .capabilities
+            .workspace
+            .as_ref()
+            .and_then(|w| w.inlay_hint.as_ref())
+            .and_then(|i| i.refresh_support);
+        self.refresh_inlay_hints
+            .store(refresh == Some(true), Ordering::Relaxed);
         if let Some(options) = &params.initialization_options {
             self.write(|s| s.configure(options));
         }
@@ -144,6 +156,10 @@ impl LanguageServer for Backend {
         let uris = self.session().open_uris();
         for uri in uris {
             self.publish(uri).await;
+        }
+        if self.refresh_inlay_hints.load(Ordering::Relaxed) {
+            // The answer carries nothing; a client that fails it just keeps old hints.
+            let _ = self.client.inlay_hint_refresh().await;
         }
     }
 
