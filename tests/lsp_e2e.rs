@@ -545,3 +545,64 @@ fn never_runs_commands_and_survives_nonsense() {
     );
     client.shutdown();
 }
+
+fn codes(published: &Value) -> Vec<String> {
+    published["diagnostics"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|d| d["code"].as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+#[test]
+fn saves_and_raypath_settings_recheck_auxiliary_files() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let dir = ws.path.parent().expect("scene folder").to_path_buf();
+    let scene = |cal: &str| {
+        format!("void brightfunc b\n2 refl {cal}\n0\n0\n\nb sphere s\n0\n0\n4 0 0 0 1\n")
+    };
+    let mut client = Client::start();
+    initialize(&mut client, json!({"raypath": []}));
+
+    open(&mut client, uri, &scene("funcs.cal"));
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(codes(&published), ["E0305"]);
+    assert_eq!(
+        published["diagnostics"][0]["message"],
+        "file 'funcs.cal' not found"
+    );
+
+    // The file appears next to the scene; a save re-checks (without an edit).
+    std::fs::write(dir.join("funcs.cal"), "refl = 1;\n").expect("write cal");
+    client.notify(
+        "textDocument/didSave",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        Vec::<String>::new()
+    );
+
+    // A file found only along the configured RAYPATH.
+    let lib = dir.join("lib");
+    std::fs::create_dir(&lib).expect("lib folder");
+    std::fs::write(lib.join("other.cal"), "refl = 1;\n").expect("write cal");
+    change(&mut client, uri, 2, &scene("other.cal"));
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        ["E0305"]
+    );
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"radc": {"raypath": [lib.display().to_string()]}}}),
+    );
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        Vec::<String>::new()
+    );
+    client.shutdown();
+}
