@@ -35,6 +35,7 @@ impl Default for Session {
 
 impl Session {
     pub fn open(&mut self, uri: Uri, version: i32, text: String) {
+        // A reopened document gets its old input back, whatever its last version was.
         if let Some(doc) = self.open.get_mut(&uri) {
             doc.version = version;
             self.db.set_text(doc.file, text);
@@ -60,9 +61,10 @@ impl Session {
     }
 
     pub fn close(&mut self, uri: &Uri) {
-        // The salsa input stays (inputs are not deleted); a reopen reuses it.
+        // Salsa inputs are never deleted: keep the input for a reopen, drop its text.
         if let Some(doc) = self.open.get_mut(uri) {
             doc.version = i32::MIN;
+            self.db.set_text(doc.file, String::new());
         }
     }
 
