@@ -606,3 +606,55 @@ fn saves_and_raypath_settings_recheck_auxiliary_files() {
     );
     client.shutdown();
 }
+
+#[test]
+fn a_rif_makes_its_files_one_scene() {
+    let ws = workspace();
+    let dir = ws.path.parent().expect("scene folder").to_path_buf();
+    let walls = "paint polygon wall\n0\n0\n9 0 0 0 1 0 0 1 1 0\n";
+    std::fs::write(
+        dir.join("basic.mat"),
+        "void plastic paint\n0\n0\n5 .5 .5 .5 0 0\n",
+    )
+    .expect("mat");
+    std::fs::write(dir.join("walls.rad"), walls).expect("walls");
+    std::fs::write(dir.join("alone.rad"), walls).expect("alone");
+    let walls_uri = format!("file://{}", dir.join("walls.rad").display());
+    let alone_uri = format!("file://{}", dir.join("alone.rad").display());
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+
+    // Without a rif, the material is undefined.
+    open(&mut client, &alone_uri, walls);
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        ["E0301"]
+    );
+
+    std::fs::write(
+        dir.join("room.rif"),
+        "materials = basic.mat\nscene = walls.rad\n",
+    )
+    .expect("rif");
+    open(&mut client, &walls_uri, walls);
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(published["uri"], walls_uri.as_str());
+    assert_eq!(codes(&published), Vec::<String>::new());
+
+    // The material file changes on disk: a watched-file event re-checks.
+    std::fs::write(
+        dir.join("basic.mat"),
+        "void plastic other\n0\n0\n5 .5 .5 .5 0 0\n",
+    )
+    .expect("mat");
+    client.notify("workspace/didChangeWatchedFiles", json!({"changes": []}));
+    let mut walls_codes = None;
+    for _ in 0..2 {
+        let published = client.notification("textDocument/publishDiagnostics");
+        if published["uri"] == walls_uri.as_str() {
+            walls_codes = Some(codes(&published));
+        }
+    }
+    assert_eq!(walls_codes, Some(vec!["E0301".to_string()]));
+    client.shutdown();
+}

@@ -41,10 +41,14 @@ pub fn to_lsp(doc: &Document<'_>, d: &Diagnostic) -> lsp::Diagnostic {
     }
 }
 
-/// Every diagnostic of the document, as `radc check FILE` reports them.
+/// Every diagnostic of the document, as `radc check FILE` reports them (or, for a
+/// document a `.rif` lists, `radc check` of all the rif's files, shown for this one).
 pub fn for_document(doc: &Document<'_>) -> Vec<lsp::Diagnostic> {
-    radc_lang::db::check_scene(doc.db, doc.file)
-        .iter()
+    let all = match doc.scene {
+        Some(set) => radc_lang::db::check_scene_set(doc.db, set),
+        None => radc_lang::db::check_scene(doc.db, doc.file),
+    };
+    all.iter()
         .filter(|d| d.span.file == doc.file.id(doc.db))
         .map(|d| to_lsp(doc, d))
         .collect()

@@ -1,7 +1,7 @@
 //! One open document as the handlers see it: its text and queries from the database,
 //! and the conversions between LSP positions (line, UTF-16 column) and byte offsets.
 
-use radc_lang::db::{self, Database, ParsedScene, SourceFile};
+use radc_lang::db::{self, Database, ParsedScene, SceneSet, SourceFile};
 use radc_lang::scene::scope::ModifierScope;
 use radc_lang::scene::syntax::{Item, Primitive};
 use radc_lang::schema::ArgSide;
@@ -12,6 +12,8 @@ pub struct Document<'a> {
     pub db: &'a Database,
     pub file: SourceFile,
     pub uri: &'a Uri,
+    /// The files read with this one as a scene (from a `.rif`), if any.
+    pub scene: Option<SceneSet>,
 }
 
 /// What a byte offset points at inside a primitive.
@@ -125,6 +127,7 @@ pub fn with_document<T>(text: &str, f: impl FnOnce(&Document<'_>) -> T) -> T {
         db: &db,
         file,
         uri: &uri,
+        scene: None,
     })
 }
 

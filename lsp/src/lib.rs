@@ -8,6 +8,7 @@ mod config;
 mod diagnostics;
 mod document;
 mod handlers;
+mod rif;
 mod search_path;
 mod server;
 mod session;

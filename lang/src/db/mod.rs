@@ -139,6 +139,14 @@ impl Database {
         SceneSet::new(self, files)
     }
 
+    /// Changes which files a scene set holds (only if they differ: no needless revision).
+    pub fn set_scene_files(&mut self, set: SceneSet, files: Vec<SourceFile>) {
+        use salsa::Setter;
+        if *set.files(self) != files {
+            set.set_files(self).to(files);
+        }
+    }
+
     /// Replaces a file's text (a new revision: dependent queries re-run on demand).
     pub fn set_text(&mut self, file: SourceFile, text: impl Into<String>) {
         use salsa::Setter;
