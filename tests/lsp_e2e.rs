@@ -641,6 +641,45 @@ fn a_rif_makes_its_files_one_scene() {
     assert_eq!(published["uri"], walls_uri.as_str());
     assert_eq!(codes(&published), Vec::<String>::new());
 
+    // Navigation reaches into the rif's earlier files.
+    let mat_uri = format!(
+        "file://{}",
+        dir.join("basic.mat").canonicalize().expect("mat").display()
+    );
+    let definition = client.request(
+        "textDocument/definition",
+        at(&walls_uri, json!({"line": 0, "character": 2})),
+    );
+    assert_eq!(
+        definition,
+        json!({"uri": mat_uri, "range": range(0, 13, 0, 18)})
+    );
+    let hover = client.request(
+        "textDocument/hover",
+        at(&walls_uri, json!({"line": 0, "character": 2})),
+    );
+    let text = hover["contents"]["value"].as_str().unwrap_or_default();
+    assert!(
+        text.starts_with("**paint** — plastic (material), defined on line 1 of basic.mat"),
+        "{text}"
+    );
+    let mut params = at(&walls_uri, json!({"line": 0, "character": 2}));
+    params["context"] = json!({"includeDeclaration": true});
+    let references = client.request("textDocument/references", params);
+    assert_eq!(
+        references,
+        json!([{"uri": mat_uri, "range": range(0, 13, 0, 18)}, {"uri": walls_uri, "range": range(0, 0, 0, 5)}])
+    );
+    let completion = client.request(
+        "textDocument/completion",
+        at(&walls_uri, json!({"line": 4, "character": 0})),
+    );
+    let labels: Vec<&str> = completion
+        .as_array()
+        .map(|a| a.iter().filter_map(|i| i["label"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(labels, ["void", "paint"]);
+
     // The material file changes on disk: a watched-file event re-checks.
     std::fs::write(
         dir.join("basic.mat"),

@@ -3,6 +3,7 @@
 //! goes. Where a word goes is read from the line: a statement is
 //! `modifier type name` at the start of a line, outside any primitive's arguments.
 
+use radc_lang::scene::scope::Definition;
 use radc_lang::schema::{self, ArgSide, PRIMITIVE_TYPES, PrimitiveType, StringKind};
 use tower_lsp_server::ls_types::{
     CompletionItem, CompletionItemKind, CompletionTextEdit, Documentation, InsertTextFormat,
@@ -92,8 +93,18 @@ fn type_item(t: &PrimitiveType, replace: Range) -> CompletionItem {
 }
 
 fn modifiers(doc: &Document<'_>, word_start: usize, replace: Range) -> Vec<CompletionItem> {
-    let visible = doc.scope().visible_at(word_start);
-    let named = visible.into_iter().map(|d| {
+    let local = doc.scope().visible_at(word_start);
+    // Modifiers of the earlier files of a `.rif` scene, unless redefined here.
+    let mut earlier: Vec<&Definition> = Vec::new();
+    for file in doc.earlier_files() {
+        let scope = radc_lang::db::modifier_scope(doc.db, file);
+        for d in scope.visible_at(usize::MAX) {
+            earlier.retain(|e| e.name != d.name);
+            earlier.push(d);
+        }
+    }
+    earlier.retain(|e| local.iter().all(|l| l.name != e.name));
+    let named = earlier.into_iter().chain(local).map(|d| {
         let category = schema::lookup(&d.type_name).map_or("unknown type", |t| t.category.as_str());
         (d.name.clone(), format!("{} ({category})", d.type_name))
     });

@@ -6,9 +6,9 @@ use tower_lsp_server::ls_types::{GotoDefinitionResponse, Location, Position};
 use crate::document::Document;
 
 pub fn definition(doc: &Document<'_>, pos: Position) -> Option<GotoDefinitionResponse> {
-    let def = doc.scope().definition_at(doc.offset(pos))?;
+    let (_, target) = doc.target_at(doc.offset(pos))?;
     Some(GotoDefinitionResponse::Scalar(Location {
-        uri: doc.uri.clone(),
-        range: doc.range(def.name_span),
+        uri: doc.uri_of(target.file),
+        range: doc.range_in(target.file, target.def.name_span),
     }))
 }
