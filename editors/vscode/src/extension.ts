@@ -36,9 +36,10 @@ function createClient(): LanguageClient {
     ],
     initializationOptions: serverSettings(),
     synchronize: {
-      // Function, data and picture files appearing or vanishing change diagnostics.
+      // Scene files of a .rif, and the function, data and picture files scenes name:
+      // their changes on disk change diagnostics.
       fileEvents: vscode.workspace.createFileSystemWatcher(
-        "**/*.{cal,dat,hdr,pic,oct,rtm,xml,fnt}"
+        "**/*.{rif,rad,mat,cal,dat,hdr,pic,oct,rtm,xml,fnt}"
       ),
     },
   };
