@@ -504,6 +504,12 @@ fn never_runs_commands_and_survives_nonsense() {
     assert!(codes.contains(&"W0303"), "{codes:?}");
     assert!(!marker.exists(), "the server ran a '!' command");
 
+    // A body that is not JSON is dropped; the server keeps serving.
+    client
+        .stdin
+        .write_all(b"Content-Length: 7\r\n\r\n{hello}")
+        .expect("write");
+
     // Positions past the end, documents never opened, formatting a broken file.
     for (method, params) in [
         (

@@ -7,6 +7,7 @@
 mod config;
 mod diagnostics;
 mod document;
+mod framing;
 mod handlers;
 mod rif;
 mod search_path;
@@ -21,10 +22,14 @@ pub fn run_stdio() -> std::io::Result<()> {
         .enable_all()
         .build()?;
     runtime.block_on(async {
+        let (input, guarded) = tokio::io::duplex(1 << 16);
+        tokio::spawn(framing::forward_valid_frames(tokio::io::stdin(), guarded));
         let (service, socket) = LspService::new(server::Backend::new);
-        Server::new(tokio::io::stdin(), tokio::io::stdout(), socket)
+        Server::new(input, tokio::io::stdout(), socket)
             .serve(service)
             .await;
     });
+    // The stdin reader may still be blocked in a read: do not wait for it.
+    runtime.shutdown_timeout(std::time::Duration::from_millis(100));
     Ok(())
 }
