@@ -703,3 +703,27 @@ fn a_rif_makes_its_files_one_scene() {
     assert_eq!(walls_codes, Some(vec!["E0301".to_string()]));
     client.shutdown();
 }
+
+#[test]
+fn calcomp_and_rif_documents_are_not_checked_as_scenes() {
+    let ws = workspace();
+    let dir = ws.path.parent().expect("folder").to_path_buf();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    for name in ["f.cal", "p.rif"] {
+        let uri = format!("file://{}", dir.join(name).display());
+        open(&mut client, &uri, "x = 1;\nscene = a.rad\n");
+        let hover = client.request(
+            "textDocument/hover",
+            at(&uri, json!({"line": 0, "character": 0})),
+        );
+        assert_eq!(hover, Value::Null);
+    }
+    // Publishing nothing for them: the next diagnostics are the scene's.
+    open(&mut client, &ws.uri, TIDY);
+    assert_eq!(
+        client.notification("textDocument/publishDiagnostics")["uri"],
+        ws.uri.as_str()
+    );
+    client.shutdown();
+}

@@ -43,9 +43,13 @@ impl Backend {
         self.session.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// Runs a handler on one open document; `None` if it is not open or the handler
+    /// Runs a handler on one open scene document; `None` if it is not open, is not a
+    /// scene (calcomp and rad input files have no server support yet), or the handler
     /// panicked.
     fn read<T>(&self, uri: &Uri, f: impl FnOnce(&Document<'_>, &Config) -> Option<T>) -> Option<T> {
+        if !is_scene(uri) {
+            return None;
+        }
         let session = self.session();
         let doc = session.document(uri)?;
         catch_unwind(AssertUnwindSafe(|| f(&doc, &session.config)))
@@ -68,6 +72,14 @@ impl Backend {
                 .await;
         }
     }
+}
+
+/// Whether a document is a scene, by its extension (`.cal` and `.rif` are not;
+/// anything else, including untitled documents, is taken as one).
+fn is_scene(uri: &Uri) -> bool {
+    let path = uri.as_str().rsplit('/').next().unwrap_or("");
+    let ext = path.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+    !matches!(ext.as_deref(), Some("cal" | "rif"))
 }
 
 fn capabilities() -> ServerCapabilities {
