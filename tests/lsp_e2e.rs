@@ -336,6 +336,18 @@ fn a_session_from_initialize_to_exit() {
         json!([{"uri": uri, "range": range(0, 13, 0, 16)}, {"uri": uri, "range": range(7, 0, 7, 3)}])
     );
 
+    // Rename rewrites the definition and the uses bound to it.
+    let mut params = at(uri, pos(UNTIDY, "red   sphere", 0, 1));
+    params["newName"] = json!("paint");
+    let rename = client.request("textDocument/rename", params);
+    assert_eq!(
+        rename,
+        json!({"changes": {uri: [
+            {"range": range(0, 13, 0, 16), "newText": "paint"},
+            {"range": range(7, 0, 7, 3), "newText": "paint"}
+        ]}})
+    );
+
     // Inlay hints name the reals.
     let hints = client.request(
         "textDocument/inlayHint",

@@ -95,6 +95,8 @@ fn capabilities() -> ServerCapabilities {
         hover_provider: Some(HoverProviderCapability::Simple(true)),
         definition_provider: Some(OneOf::Left(true)),
         references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Left(true)),
+        document_highlight_provider: Some(OneOf::Left(true)),
         document_symbol_provider: Some(OneOf::Left(true)),
         completion_provider: Some(CompletionOptions::default()),
         inlay_hint_provider: Some(OneOf::Left(true)),
@@ -205,6 +207,23 @@ impl LanguageServer for Backend {
         let declaration = params.context.include_declaration;
         Ok(self.read(&p.text_document.uri, |doc, _| {
             handlers::references::references(doc, p.position, declaration)
+        }))
+    }
+
+    async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
+        let p = params.text_document_position;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::rename::rename(doc, p.position, &params.new_name)
+        }))
+    }
+
+    async fn document_highlight(
+        &self,
+        params: DocumentHighlightParams,
+    ) -> Result<Option<Vec<DocumentHighlight>>> {
+        let p = params.text_document_position_params;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::highlights::highlights(doc, p.position)
         }))
     }
 
