@@ -4,6 +4,11 @@ then makes edits (one real changed per edit) and times each didChange until the
 matching publishDiagnostics arrives. Prints the median and worst in milliseconds.
 
 usage: bench/lsp_latency.py [path/to/radc] [primitives] [edits]
+
+Measured Nov 2026 on the 2-core project machine, `cargo build --release`, full-text sync,
+times including this script's JSON encoding:
+  bench/lsp_latency.py target/release/radc 1000 30    open 3.0 ms, edit median 1.4 ms, worst 7.5 ms
+  bench/lsp_latency.py target/release/radc 10000 30   open 35.9 ms, edit median 34.8 ms, worst 76.2 ms
 """
 import json, subprocess, sys, time
 
