@@ -739,3 +739,39 @@ fn calcomp_and_rif_documents_are_not_checked_as_scenes() {
     );
     client.shutdown();
 }
+
+#[test]
+fn a_burst_of_edits_ends_with_the_last_texts_diagnostics() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, uri, TIDY);
+    client.notification("textDocument/publishDiagnostics");
+    // Versions 2..=40 alternate between broken and fixed; the last one is broken.
+    for version in 2..=40 {
+        let text = if version % 2 == 0 { BROKEN } else { TIDY };
+        change(&mut client, uri, version, text);
+    }
+    let last = loop {
+        let published = client.notification("textDocument/publishDiagnostics");
+        if published["version"] == 40 {
+            break published;
+        }
+    };
+    assert_eq!(codes(&last), ["E0202"]);
+    // Nothing older arrives after it.
+    let hover = client.request(
+        "textDocument/hover",
+        at(uri, json!({"line": 5, "character": 6})),
+    );
+    assert_eq!(hover["range"], range(5, 4, 5, 10));
+    assert!(
+        client
+            .unread
+            .iter()
+            .all(|m| m["params"]["version"] == 40
+                || m["method"] != "textDocument/publishDiagnostics")
+    );
+    client.shutdown();
+}
