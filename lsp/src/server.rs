@@ -64,9 +64,19 @@ impl Backend {
 
     async fn publish(&self, uri: Uri) {
         let _order = self.publishing.lock().await;
-        let found = self.read(&uri, |doc, _| Some(crate::diagnostics::for_document(doc)));
-        let version = self.session().version(&uri);
-        if let Some(diagnostics) = found {
+        // Diagnostics and the version they belong to, read under one lock.
+        let found = {
+            let session = self.session();
+            let version = session.version(&uri);
+            let diagnostics = session
+                .document(&uri)
+                .filter(|_| is_scene(&uri))
+                .and_then(|doc| {
+                    catch_unwind(AssertUnwindSafe(|| crate::diagnostics::for_document(&doc))).ok()
+                });
+            diagnostics.map(|d| (d, version))
+        };
+        if let Some((diagnostics, version)) = found {
             self.client
                 .publish_diagnostics(uri, diagnostics, version)
                 .await;
