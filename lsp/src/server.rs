@@ -110,6 +110,10 @@ fn capabilities() -> ServerCapabilities {
         document_symbol_provider: Some(OneOf::Left(true)),
         completion_provider: Some(CompletionOptions::default()),
         inlay_hint_provider: Some(OneOf::Left(true)),
+        signature_help_provider: Some(SignatureHelpOptions {
+            trigger_characters: Some(vec![" ".into()]),
+            ..SignatureHelpOptions::default()
+        }),
         document_formatting_provider: Some(OneOf::Left(true)),
         color_provider: Some(ColorProviderCapability::Simple(true)),
         ..ServerCapabilities::default()
@@ -252,6 +256,13 @@ impl LanguageServer for Backend {
         let p = params.text_document_position;
         Ok(self.read(&p.text_document.uri, |doc, _| {
             handlers::completion::completion(doc, p.position).map(CompletionResponse::Array)
+        }))
+    }
+
+    async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
+        let p = params.text_document_position_params;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::signature_help::signature_help(doc, p.position)
         }))
     }
 

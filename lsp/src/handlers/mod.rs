@@ -11,6 +11,7 @@ pub mod hover;
 pub mod inlay_hints;
 pub mod references;
 pub mod rename;
+pub mod signature_help;
 pub mod symbols;
 
 #[cfg(test)]
@@ -56,6 +57,7 @@ mod properties {
                 let _ = references::references(doc, pos, true);
                 let _ = rename::rename(doc, pos, "n");
                 let _ = highlights::highlights(doc, pos);
+                let _ = signature_help::signature_help(doc, pos);
                 let _ = completion::completion(doc, pos);
                 let _ = inlay_hints::inlay_hints(doc, range);
                 let _ = symbols::symbols(doc);
