@@ -4,11 +4,14 @@
 //! spawns a process: the CLI and the language server are the only places that touch
 //! the outside world, so both see exactly the same diagnostics.
 
+pub mod cal;
+pub mod datafile;
 pub mod db;
 pub mod diagnostic;
 pub mod scene;
 pub mod schema;
 pub mod source;
+pub mod transform;
 
 pub use diagnostic::{Code, Diagnostic, Label, Severity};
 pub use source::{FileId, LineIndex, Span};

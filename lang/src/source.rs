@@ -131,9 +131,9 @@ mod tests {
 }
 
 /// Turns file bytes into text without moving any byte offset: invalid UTF-8 bytes
-/// and NULs become `?` and a space respectively, and each kind is reported once at its
-/// first occurrence. Radiance reads bytes, so an old Latin-1 comment is no reason to
-/// reject a scene; a NUL, though, truncates C strings mid-word.
+/// become `?`, and invalid bytes and NULs are each reported once at their first
+/// occurrence. Radiance reads bytes, so an old Latin-1 comment is no reason to reject
+/// a scene; a NUL ends the C string of the word it sits in (see `lexer::unquote`).
 pub fn decode(file: FileId, bytes: &[u8]) -> (String, Vec<crate::Diagnostic>) {
     use crate::diagnostic::{self as codes, Diagnostic};
     let mut diags = Vec::new();
@@ -170,16 +170,9 @@ pub fn decode(file: FileId, bytes: &[u8]) -> (String, Vec<crate::Diagnostic>) {
     }
     if let Some(at) = text.find('\0') {
         diags.push(
-            Diagnostic::new(
-                codes::E0108,
-                Span::new(file, at..at + 1),
-                "the file contains a NUL byte",
-            )
-            .with_hint(
-                "Radiance stops reading a word at a NUL; remove it (is this a binary file?)",
-            ),
+            Diagnostic::new(codes::W0103, Span::new(file, at..at + 1), "the file contains a NUL byte")
+                .with_hint("Radiance stops reading a word at a NUL and skips the rest of it; remove it (is this a binary file?)"),
         );
-        text = text.replace('\0', " ");
     }
     (text, diags)
 }
@@ -191,9 +184,9 @@ mod decode_tests {
     #[test]
     fn keeps_byte_offsets() {
         let (text, diags) = decode(FileId(0), b"ab\xff\xfecd\0e");
-        assert_eq!(text, "ab??cd e");
+        assert_eq!(text, "ab??cd\0e");
         let ids: Vec<_> = diags.iter().map(|d| d.code.id).collect();
-        assert_eq!(ids, vec!["W0101", "E0108"]);
+        assert_eq!(ids, vec!["W0101", "W0103"]);
         assert_eq!(diags[0].span.range(), 2..3);
     }
 }

@@ -1,1 +1,16 @@
-//! placeholder
+//! radc's renderer: a compiled scene (shapes, BVH, materials, light sources) and the
+//! ray evaluation that reproduces Radiance's rtrace. It sees typed scenes, never text.
+
+pub mod bvh;
+pub mod camera;
+pub mod integrator;
+pub mod lights;
+pub mod materials;
+pub mod math;
+pub mod picture;
+pub mod ray;
+pub mod scene;
+pub mod shapes;
+
+pub use integrator::{Options, RayState, Target, Tracer};
+pub use scene::{Scene, Unsupported};

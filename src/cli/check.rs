@@ -6,16 +6,16 @@
 //! them (so `radc check materials.mat room.rad` resolves the room's materials). Each
 //! `.rad` file found under a directory argument is checked as a scene of its own.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use std::sync::Arc;
-
-use radc_lang::db::{self, AuxFiles, Database};
+use radc_lang::scene::{self, FileLookup, LowerInput};
 use radc_lang::schema::FileKind;
-use radc_lang::{Diagnostic, Severity};
+use radc_lang::{Diagnostic, FileId, Severity};
 
 use super::USAGE_ERROR;
+use super::expand::{Commands, PendingSources};
 use super::report::{self, Format, Sources};
 
 const USAGE: &str =
@@ -25,6 +25,7 @@ struct Options {
     format: Format,
     deny_warnings: bool,
     quiet: bool,
+    allow_commands: bool,
     paths: Vec<PathBuf>,
 }
 
@@ -33,6 +34,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         format: Format::Human,
         deny_warnings: false,
         quiet: false,
+        allow_commands: false,
         paths: Vec::new(),
     };
     let mut it = args.iter();
@@ -51,6 +53,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             },
             "--deny=warnings" | "-W" => o.deny_warnings = true,
             "-q" | "--quiet" => o.quiet = true,
+            "--allow-commands" => o.allow_commands = true,
             "-h" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s != "-" => return Err(format!("unknown option '{s}'")),
             path => o.paths.push(PathBuf::from(path)),
@@ -73,7 +76,6 @@ pub fn run(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let mut db = Database::new(Arc::new(SearchPath::from_env()));
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let mut scene_files = Vec::new();
@@ -83,14 +85,20 @@ pub fn run(args: &[String]) -> ExitCode {
             collect_scenes(path, &mut found);
             found.sort();
             for f in found {
-                check_scene(&mut db, &[f], &mut sources, &mut diags);
+                if is_cal(&f) {
+                    check_cal(&f, &mut sources, &mut diags);
+                } else {
+                    check_scene(&[f], opts.allow_commands, &mut sources, &mut diags);
+                }
             }
+        } else if is_cal(path) {
+            check_cal(path, &mut sources, &mut diags);
         } else {
             scene_files.push(path.clone());
         }
     }
     if !scene_files.is_empty() {
-        check_scene(&mut db, &scene_files, &mut sources, &mut diags);
+        check_scene(&scene_files, opts.allow_commands, &mut sources, &mut diags);
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
@@ -100,7 +108,9 @@ pub fn run(args: &[String]) -> ExitCode {
         .count();
     let warnings = diags.len() - errors;
     if opts.format == Format::Human && !opts.quiet {
-        println!(
+        // A closed pipe (`radc check ... | head`) is not an error worth a panic.
+        let _ = writeln!(
+            std::io::stdout(),
             "{} error{}, {} warning{}",
             errors,
             if errors == 1 { "" } else { "s" },
@@ -123,78 +133,191 @@ fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {
         let p = e.path();
         if p.is_dir() {
             collect_scenes(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rad") {
+        } else if p.extension().is_some_and(|x| x == "rad" || x == "cal") {
             out.push(p);
         }
     }
 }
 
-/// Reads `paths` and checks them in order as one scene, through the database the
-/// language server uses too.
-fn check_scene(
-    db: &mut Database,
+fn is_cal(path: &Path) -> bool {
+    path.extension().is_some_and(|x| x == "cal")
+}
+
+/// Checks a calcomp file on its own. Names it leaves to its users (a scene, an rcalc
+/// command line) are noted, not errors.
+fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
+    let name = path.display().to_string();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            let file = sources.add(name.clone(), String::new());
+            diags.push(Diagnostic::new(
+                radc_lang::diagnostic::E0305,
+                radc_lang::Span::new(file, 0..0),
+                format!("cannot read '{name}': {e}"),
+            ));
+            return;
+        }
+    };
+    let file = FileId(sources_len(sources));
+    let (text, found) = radc_lang::source::decode(file, &bytes);
+    diags.extend(found);
+    // A file is either for the renderer (ray variables, rayinit.cal) or for rcalc and
+    // the generators (`$N`, `Px(i)` user functions are fine there): judge it as the
+    // one it fits, preferring the renderer.
+    let errors = |d: &Vec<Diagnostic>| d.iter().filter(|d| d.is_error()).count();
+    let renderer = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::renderer());
+    let found = if errors(&renderer) > 0 {
+        let rcalc = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::rcalc());
+        if errors(&rcalc) < errors(&renderer) {
+            rcalc
+        } else {
+            renderer
+        }
+    } else {
+        renderer
+    };
+    diags.extend(found);
+    sources.add(name, text);
+}
+
+/// Reads, parses and lowers `paths` in order as one scene.
+pub(super) fn check_scene(
     paths: &[PathBuf],
+    allow_commands: bool,
     sources: &mut Sources,
     diags: &mut Vec<Diagnostic>,
-) {
-    let mut files = Vec::new();
+) -> scene::ir::Scene {
+    let mut parsed = Vec::new();
+    let mut dirs = Vec::new();
     for path in paths {
         let name = path.display().to_string();
-        match std::fs::read(path) {
-            Ok(bytes) => {
-                let file = db.add_file(name.clone(), String::new());
-                let id = file.id(db);
-                let (text, found) = radc_lang::source::decode(id, &bytes);
-                diags.extend(found);
-                db.set_text(file, text.clone());
-                let added = sources.add(name, text);
-                debug_assert_eq!(added, id);
-                files.push(file);
-            }
+        let bytes = match std::fs::read(path) {
+            Ok(b) => b,
             Err(e) => {
-                let id = db.add_file(name.clone(), String::new()).id(db);
-                let added = sources.add(name.clone(), String::new());
-                debug_assert_eq!(added, id);
+                let file = sources.add(name.clone(), String::new());
                 diags.push(Diagnostic::new(
                     radc_lang::diagnostic::E0305,
-                    radc_lang::Span::new(id, 0..0),
+                    radc_lang::Span::new(file, 0..0),
                     format!("cannot read '{name}': {e}"),
                 ));
+                continue;
             }
-        }
+        };
+        let file = FileId(sources_len(sources));
+        let (text, mut found) = radc_lang::source::decode(file, &bytes);
+        let id = sources.add(name, text);
+        debug_assert_eq!(id, file);
+        let text = sources.get(id).map(|s| s.text.clone()).unwrap_or_default();
+        let (syntax, syntax_diags) = scene::parse(id, &text);
+        found.extend(syntax_diags);
+        diags.extend(found);
+        let warn_unused = path.extension().is_none_or(|x| x != "mat");
+        dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
+        parsed.push((id, syntax, warn_unused));
     }
-    let set = db.scene_set(files);
-    diags.extend(db::check_scene_set(db, set).iter().cloned());
+    let inputs: Vec<LowerInput<'_>> = parsed
+        .iter()
+        .map(|(file, syntax, warn_unused)| LowerInput {
+            file: *file,
+            syntax,
+            warn_unused: *warn_unused,
+        })
+        .collect();
+    let pending = PendingSources::new(sources_len(sources));
+    let commands = Commands::new(dirs.clone(), &pending, allow_commands);
+    let lookup = SearchPath::new(dirs, &pending);
+    let (scene, more) = scene::lower_with(&inputs, &lookup, &commands);
+    drop((commands, lookup));
+    for (name, text) in pending.into_sources() {
+        sources.add(name, text);
+    }
+    diags.extend(more);
+    scene
+}
+
+fn sources_len(sources: &Sources) -> u32 {
+    let mut n = 0;
+    while sources.get(FileId(n)).is_some() {
+        n += 1;
+    }
+    n
 }
 
 /// Finds auxiliary files as Radiance does, plus the scene's own folder: absolute
 /// paths as they are; otherwise the folder of the scene file that names it, the
 /// current folder, then each folder of RAYPATH.
-struct SearchPath {
+struct SearchPath<'a> {
+    scene_dirs: Vec<(FileId, PathBuf)>,
     raypath: Vec<PathBuf>,
+    pending: &'a PendingSources,
 }
 
-impl SearchPath {
-    fn from_env() -> Self {
+impl<'a> SearchPath<'a> {
+    fn new(scene_dirs: Vec<(FileId, PathBuf)>, pending: &'a PendingSources) -> Self {
         let raypath = std::env::var_os("RAYPATH")
             .map(|v| std::env::split_paths(&v).collect())
             .unwrap_or_default();
-        SearchPath { raypath }
+        SearchPath {
+            scene_dirs,
+            raypath,
+            pending,
+        }
     }
 }
 
-impl AuxFiles for SearchPath {
-    fn exists(&self, name: &str, _kind: FileKind, scene_path: &Path) -> bool {
+impl SearchPath<'_> {
+    fn find(&self, name: &str, from: FileId) -> Option<PathBuf> {
         let p = Path::new(name);
         if p.is_absolute() {
-            return p.exists();
+            return p.exists().then(|| p.to_path_buf());
         }
-        scene_path
-            .parent()
-            .map(Path::to_path_buf)
+        let scene_dir = self
+            .scene_dirs
+            .iter()
+            .find(|(f, _)| *f == from)
+            .map(|(_, d)| d.clone())
+            .or_else(|| self.pending.dir_of(from));
+        scene_dir
             .into_iter()
             .chain(std::iter::once(PathBuf::from(".")))
             .chain(self.raypath.iter().cloned())
-            .any(|d| d.join(p).exists())
+            .map(|d| d.join(p))
+            .find(|candidate| candidate.exists())
+    }
+}
+
+/// Auxiliary files larger than this are not read for content checks.
+const MAX_AUX_FILE: u64 = 64 << 20;
+
+impl FileLookup for SearchPath<'_> {
+    fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
+        self.find(name, from).is_some()
+    }
+
+    fn read(&self, name: &str, _kind: FileKind, from: FileId) -> Option<String> {
+        let path = self.find(name, from)?;
+        if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {
+            return None;
+        }
+        let bytes = std::fs::read(path).ok()?;
+        Some(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    fn load(&self, name: &str, kind: FileKind, from: FileId) -> Option<(FileId, String)> {
+        let text = self.read(name, kind, from)?;
+        let dir = self
+            .find(name, from)
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+            .unwrap_or_default();
+        Some((self.pending.add(name.to_string(), text.clone(), dir), text))
+    }
+
+    fn read_head(&self, name: &str, _kind: FileKind, from: FileId, max: usize) -> Option<Vec<u8>> {
+        use std::io::Read;
+        let file = std::fs::File::open(self.find(name, from)?).ok()?;
+        let mut head = Vec::with_capacity(max);
+        file.take(max as u64).read_to_end(&mut head).ok()?;
+        Some(head)
     }
 }

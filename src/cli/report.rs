@@ -3,7 +3,7 @@
 
 use std::io::{IsTerminal, Write};
 
-use ariadne::{Color, Config, IndexType, Label, Report, ReportKind, Source};
+use ariadne::{Color, Config, IndexType, Label, Report, ReportKind};
 use radc_lang::{Diagnostic, FileId, LineIndex, Severity};
 
 /// A file as the report sees it: a display name and its (decoded) text.
@@ -40,6 +40,25 @@ pub enum Format {
 pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
+    let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    print_to(diags, sources, format, color, &mut out);
+}
+
+/// Diagnostics to stderr, for commands whose stdout carries data (`radc trace`).
+pub fn eprint(diags: &[Diagnostic], sources: &Sources) {
+    let stderr = std::io::stderr();
+    let mut out = stderr.lock();
+    let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    print_to(diags, sources, Format::Human, color, &mut out);
+}
+
+fn print_to(
+    diags: &[Diagnostic],
+    sources: &Sources,
+    format: Format,
+    color: bool,
+    out: &mut impl Write,
+) {
     match format {
         Format::Json => {
             for d in diags {
@@ -47,9 +66,8 @@ pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
             }
         }
         Format::Human => {
-            let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
             for d in diags {
-                human(d, sources, color, &mut out);
+                human(d, sources, color, out);
             }
         }
     }
@@ -77,6 +95,20 @@ pub fn json(d: &Diagnostic, sources: &Sources) -> serde_json::Value {
         "end_column": end.1,
         "message": d.message,
         "hint": d.hint,
+        "labels": d.labels.iter().map(|l| label_json(l, sources)).collect::<Vec<_>>(),
+    })
+}
+
+fn label_json(l: &radc_lang::Label, sources: &Sources) -> serde_json::Value {
+    let Some(s) = sources.get(l.span.file) else {
+        return serde_json::json!({ "message": l.message });
+    };
+    let (line, column) = s.lines.line_col(&s.text, l.span.start as usize);
+    serde_json::json!({
+        "file": s.name,
+        "line": line,
+        "column": column,
+        "message": l.message,
     })
 }
 
@@ -93,12 +125,13 @@ fn human(d: &Diagnostic, sources: &Sources, color: bool, out: &mut impl Write) {
         Severity::Error => Color::Red,
         Severity::Warning => Color::Yellow,
     };
-    let name = src.name.as_str();
+    // ariadne's multi-file cache wants owned ids.
+    let name = src.name.clone();
     let clamp = |r: std::ops::Range<usize>| {
         let len = src.text.len();
         r.start.min(len)..r.end.min(len)
     };
-    let mut report = Report::build(kind, (name, clamp(d.span.range())))
+    let mut report = Report::build(kind, (name.clone(), clamp(d.span.range())))
         .with_config(
             Config::new()
                 .with_index_type(IndexType::Byte)
@@ -107,27 +140,30 @@ fn human(d: &Diagnostic, sources: &Sources, color: bool, out: &mut impl Write) {
         .with_code(d.code.id)
         .with_message(&d.message)
         .with_label(
-            Label::new((name, clamp(d.span.range())))
+            Label::new((name.clone(), clamp(d.span.range())))
                 .with_message(d.code.name)
                 .with_color(main_color),
         );
+    let mut files = vec![(name.clone(), src.text.clone())];
     for l in &d.labels {
-        if let Some(other) = sources.get(l.span.file)
-            && l.span.file == d.span.file
-        {
-            let len = other.text.len();
-            let r = l.span.start as usize..l.span.end as usize;
-            report = report.with_label(
-                Label::new((name, r.start.min(len)..r.end.min(len)))
-                    .with_message(&l.message)
-                    .with_color(Color::Blue),
-            );
+        let Some(other) = sources.get(l.span.file) else {
+            continue;
+        };
+        let len = other.text.len();
+        let r = l.span.start as usize..l.span.end as usize;
+        report = report.with_label(
+            Label::new((other.name.clone(), r.start.min(len)..r.end.min(len)))
+                .with_message(&l.message)
+                .with_color(Color::Blue),
+        );
+        if !files.iter().any(|(n, _)| *n == other.name) {
+            files.push((other.name.clone(), other.text.clone()));
         }
     }
     if let Some(h) = &d.hint {
         report = report.with_help(h);
     }
-    let cache = (name, Source::from(src.text.as_str()));
+    let cache = ariadne::sources(files);
     if report.finish().write(cache, &mut *out).is_err() {
         let (line, col) = src.lines.line_col(&src.text, d.span.start as usize);
         let _ = writeln!(

@@ -8,12 +8,14 @@
 Writes:
 - `tests/data/scenes/generated/*.rad`: the output of Radiance's generators (genbox, genprism,
   genrev, gensurf, genworm, gensky, xform) for a spread of arguments. A scene that only
-  defines a sky (gensky) gets a fixed sky-dome suffix so it contains surfaces a ray can hit.
+  defines a sky (gensky) gets a fixed sky-dome suffix so it contains surfaces a ray can hit;
+  geometry gets the materials it names (`white`, `black`) prepended so each file is a
+  complete scene.
 - binary side files that hand-written scenes in `tests/data/scenes/valid/` name: an octree
-  for `instance` (oconv -f), a triangle mesh for `mesh` (obj2mesh) and a 4x4 picture for the
-  `*pict` primitives and a 2x2 hyperspectral one for `specpict` (both written here byte by
-  byte: pcomb would stamp the date into them), and a
-  constant tensor-tree BSDF (bsdf2ttree) for `BSDF`/`aBSDF`.
+  for `instance` (oconv -f), a triangle mesh for `mesh` (obj2mesh), a constant tensor-tree
+  BSDF for `BSDF`/`aBSDF` (bsdf2ttree), a 4x4 picture for the `*pict` primitives and a 2x2
+  hyperspectral one for `specpict` (both written byte by byte here: pcomb would stamp the
+  date into them).
 
 Every output is deterministic; `--check` regenerates into memory and lists each file whose
 bytes differ from the committed one. Needs the oracle (`tests/oracle/env.sh`) on PATH.
@@ -263,7 +265,7 @@ def main() -> int:
     parser.add_argument("--check", action="store_true", help="verify instead of writing")
     args = parser.parse_args()
     if "RAYPATH" not in os.environ:
-        return sys.exit("source tests/oracle/env.sh first")
+        sys.exit("source tests/oracle/env.sh first")
     GENERATED.mkdir(parents=True, exist_ok=True)
     files = {**generated_files(), **side_files()}
     if args.check:

@@ -104,7 +104,7 @@ def run(argv: list[str], cwd: Path, stdin: bytes, timeout: int) -> tuple[int, st
 
 
 def words(text: str) -> list[str | None]:
-    """Splits a scene into statements of words, roughly as Radiance's fgetword does:
+    """Splits a scene into words, roughly as Radiance's fgetword does:
     whitespace separates, a double quote opens a segment in which whitespace is kept,
     a word starting with `#` or `!` runs to the end of the line (`None` marks a command).
     Only used on scenes oconv accepted, where such words start statements, so no error
@@ -158,28 +158,18 @@ def statements(text: str) -> list[list[str]]:
 
 
 def primitives(text: str) -> list[tuple[str, str, list[str], list[float]]]:
-    """(modifier, type, strings, reals) of each primitive in an expanded scene."""
-    toks = [t for t in words(text) if t is not None]
+    """(modifier, type, strings, reals) of each non-alias primitive in an expanded scene."""
     out = []
-    i = 0
-    while i + 2 < len(toks):
-        mod, typ = toks[i], toks[i + 1]
-        i += 3
-        if typ == "alias":
-            i += 1
+    for words_ in statements(text):
+        if words_[1] == "alias":
             continue
         try:
-            ns = int(toks[i])
-            strings = toks[i + 1 : i + 1 + ns]
-            i += 1 + ns
-            ni = int(toks[i])
-            i += 1 + ni
-            nr = int(toks[i])
-            reals = [float(x) for x in toks[i + 1 : i + 1 + nr]]
-            i += 1 + nr
+            ns = int(words_[3])
+            nr_at = 3 + 1 + ns + 1 + int(words_[4 + ns])
+            reals = [float(x) for x in words_[nr_at + 1 :]]
         except (ValueError, IndexError):
-            break
-        out.append((mod, typ, strings, reals))
+            continue
+        out.append((words_[0], words_[1], words_[4 : 4 + ns], reals))
     return out
 
 

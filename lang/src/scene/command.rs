@@ -14,11 +14,13 @@ pub enum Expansion {
     /// warning when only checking, an error when the scene is to be built.
     NotExpanded { reason: String },
     /// The command was understood but failed (bad generator arguments, a missing
-    /// input file, an include cycle): an error.
+    /// input file): a warning, as oconv only warns about a command's bad status.
     Failed {
         message: String,
         hint: Option<String>,
     },
+    /// The command includes, directly or through nested commands, the file it sits in.
+    Cycle { message: String },
 }
 
 pub trait CommandExpander {

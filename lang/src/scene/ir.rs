@@ -37,6 +37,9 @@ pub struct Prim {
     /// Other modifiers this one names in its string arguments (mixture foreground and
     /// background, illum/mirror alternates, antimatter lists), resolved where defined.
     pub refs: Vec<PrimId>,
+    /// The transform written at the end of the string arguments (instances, meshes,
+    /// patterns, textures, mixtures), parsed; identity when there is none.
+    pub transform: crate::transform::Transform,
     pub kind: PrimKind,
     pub span: Span,
 }

@@ -79,6 +79,9 @@ pub fn lex(text: &str) -> Vec<(Token<'_>, std::ops::Range<usize>)> {
 /// The value of a word as Radiance reads it: quote characters removed, quoted
 /// whitespace kept.
 pub fn unquote(word: &str) -> std::borrow::Cow<'_, str> {
+    // Radiance keeps words in C strings: a NUL ends the word's value, though the
+    // characters after it up to the next space are still consumed.
+    let word = word.split('\0').next().unwrap_or("");
     if !word.contains(['"', '\'']) {
         return std::borrow::Cow::Borrowed(word);
     }

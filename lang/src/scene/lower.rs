@@ -10,16 +10,42 @@
 use std::collections::{HashMap, HashSet};
 
 use super::command::{CommandExpander, Expansion, MAX_DEPTH, NoCommands};
+use super::functions::{self, FunctionFile};
 use super::ir::{ModRef, Prim, PrimId, PrimKind, Rgb, Scene, Vec3};
 use super::syntax::{Alias, Command, Item, Primitive, SceneFile, Word};
 use crate::diagnostic::{self as codes, Diagnostic, suggest};
 use crate::schema::{self, ArgList, Category, FileKind, PrimitiveType, StringKind};
 use crate::source::{FileId, Span};
+use crate::transform::Transform;
 
 /// Answers whether an auxiliary file named in a scene exists. The CLI searches the
 /// scene's folder and RAYPATH; `lang` itself never touches the file system.
 pub trait FileLookup {
     fn exists(&self, name: &str, kind: FileKind, from: FileId) -> bool;
+
+    /// The text of a file found the same way, for the checks that look inside
+    /// auxiliary files (data files, function files). `None` skips those checks.
+    fn read(&self, _name: &str, _kind: FileKind, _from: FileId) -> Option<String> {
+        None
+    }
+
+    /// The first `max` bytes of a file found the same way (to recognise a picture
+    /// without reading all of it). `None` skips the check.
+    fn read_head(
+        &self,
+        _name: &str,
+        _kind: FileKind,
+        _from: FileId,
+        _max: usize,
+    ) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// A file to check in its own right (a function file), registered as a source so
+    /// diagnostics can point into it. `None` skips those checks.
+    fn load(&self, _name: &str, _kind: FileKind, _from: FileId) -> Option<(FileId, String)> {
+        None
+    }
 }
 
 /// For callers with no file system (or who don't want file checks).
@@ -61,12 +87,15 @@ pub fn lower_with(
         warn_unused: Vec::new(),
         files,
         commands,
+        deferred: Vec::new(),
+        function_files: HashMap::new(),
     };
     for input in inputs {
         cx.items(&input.syntax.items, input.warn_unused, 0);
     }
-    cx.report_unused();
     cx.report_conflicting_materials();
+    cx.settle_deferred();
+    cx.report_unused();
     (cx.scene, cx.diags)
 }
 
@@ -83,6 +112,20 @@ struct Lowering<'a> {
     warn_unused: Vec<bool>,
     files: &'a dyn FileLookup,
     commands: &'a dyn CommandExpander,
+    /// Errors Radiance only raises when the primitive is actually used (materials are
+    /// checked when a ray first hits them, sources when they are set up), by the index
+    /// of the diagnostic. Judged once the whole scene is known.
+    deferred: Vec<(Deferred, usize)>,
+    /// Function files loaded so far, by name as written (`None`: could not be loaded).
+    function_files: HashMap<String, Option<FunctionFile>>,
+}
+
+#[derive(Clone, Copy)]
+enum Deferred {
+    /// Only an error if the modifier is reachable from a surface.
+    IfUsed(PrimId),
+    /// Only an error if this `source` is made of a light-emitting material.
+    IfLightSource(PrimId),
 }
 
 impl Lowering<'_> {
@@ -135,8 +178,15 @@ impl Lowering<'_> {
                 )
                 .with_hint(reason),
             ),
+            Expansion::Cycle { message } => {
+                self.diags
+                    .push(Diagnostic::new(codes::E0307, c.span, message).with_hint(
+                        "a scene cannot include itself; remove the '!' line that reads this file",
+                    ))
+            }
             Expansion::Failed { message, hint } => {
-                let mut d = Diagnostic::new(codes::E0307, c.span, message);
+                // oconv only warns about a failing command ("bad status") and goes on.
+                let mut d = Diagnostic::new(codes::W0306, c.span, message);
                 if let Some(h) = hint {
                     d = d.with_hint(h);
                 }
@@ -162,10 +212,14 @@ impl Lowering<'_> {
             return;
         }
         let modifier = self.resolve_modifier(&p.modifier, schema);
+        let id = PrimId(self.scene.prims.len() as u32);
+        let first = self.diags.len();
         let counts_ok = self.check_counts(p, schema);
         if counts_ok {
             self.check_values(p, schema);
             self.check_files(p, schema);
+            self.check_data_coordinates(p, schema);
+            self.check_functions(p, schema);
         }
         let refs = if counts_ok {
             self.string_modifier_refs(p, schema)
@@ -177,6 +231,25 @@ impl Lowering<'_> {
         } else {
             other(p)
         };
+        let condition = if schema.category.is_modifier() {
+            Some(Deferred::IfUsed(id))
+        } else if schema.name == "source" {
+            Some(Deferred::IfLightSource(id))
+        } else {
+            None
+        };
+        if let Some(condition) = condition {
+            for i in first..self.diags.len() {
+                if self.diags[i].is_error() {
+                    self.deferred.push((condition, i));
+                }
+            }
+        }
+        let transform = if counts_ok {
+            self.parse_transform(p, schema)
+        } else {
+            Transform::IDENTITY
+        };
         let prim = Prim {
             name: p.name.text.clone(),
             name_span: p.name.span,
@@ -184,6 +257,7 @@ impl Lowering<'_> {
             schema,
             modifier,
             refs,
+            transform,
             kind,
             span: p.span,
         };
@@ -336,6 +410,7 @@ impl Lowering<'_> {
             schema,
             modifier,
             refs: Vec::new(),
+            transform: Transform::IDENTITY,
             kind,
             span: a.span,
         };
@@ -387,6 +462,21 @@ impl Lowering<'_> {
         ] {
             let n = u32::try_from(n).unwrap_or(u32::MAX);
             if list.count.accepts(n) {
+                continue;
+            }
+            if what == "string" && list.count == schema::Count::Exactly(0) {
+                // No reader of a string-less type looks at its strings.
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::W0207,
+                        span,
+                        format!(
+                            "{} takes no string arguments; Radiance ignores these {n}",
+                            schema.name
+                        ),
+                    )
+                    .with_hint("write 0 as the string count"),
+                );
                 continue;
             }
             ok = false;
@@ -474,8 +564,9 @@ impl Lowering<'_> {
     }
 
     fn check_files(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
         for (i, w) in p.strings.items.iter().enumerate() {
-            let Some((arg, _)) = schema.strings.arg_at(i) else {
+            let Some((arg, _)) = schema.strings.arg_in(i, &words) else {
                 continue;
             };
             if arg.kind == StringKind::Transform {
@@ -485,6 +576,37 @@ impl Lowering<'_> {
                 continue;
             };
             if kind == FileKind::Cal && w.text == "." {
+                continue;
+            }
+            if kind == FileKind::Data
+                && let Some(text) = self.files.read(&w.text, kind, w.span.file)
+                && let Err(e) = crate::datafile::DataFile::parse(&text)
+            {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0308,
+                        w.span,
+                        format!("data file '{}' cannot be read: {e}", w.text),
+                    )
+                    .with_hint("see the Radiance reference manual, section 2.2.2, for the data file layout"),
+                );
+                continue;
+            }
+            if kind == FileKind::Picture
+                && let Some(head) = self.files.read_head(&w.text, kind, w.span.file, 2)
+                && head != b"#?"
+            {
+                self.diags.push(
+                    Diagnostic::new(
+                        codes::E0309,
+                        w.span,
+                        format!(
+                            "'{}' is not a Radiance picture (it does not start with '#?')",
+                            w.text
+                        ),
+                    )
+                    .with_hint("convert images with ra_tiff, ra_ppm or ra_bmp -r"),
+                );
                 continue;
             }
             if !self.files.exists(&w.text, kind, w.span.file) {
@@ -500,15 +622,31 @@ impl Lowering<'_> {
     }
 
     fn string_modifier_refs(&mut self, p: &Primitive, schema: &PrimitiveType) -> Vec<PrimId> {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
         let mut refs = Vec::new();
         for (i, w) in p.strings.items.iter().enumerate() {
-            let Some((arg, _)) = schema.strings.arg_at(i) else {
+            let Some((arg, _)) = schema.strings.arg_in(i, &words) else {
                 continue;
             };
             if arg.kind == StringKind::Transform {
                 break;
             }
             if arg.kind != StringKind::Modifier || w.text == "void" || w.text == "inherit" {
+                continue;
+            }
+            if matches!(schema.name, "antimatter" | "illum")
+                && !self.modifiers.contains_key(&w.text)
+            {
+                // Radiance only warns about these (when a ray enters the antimatter, or
+                // when an illum's alternate material is looked up).
+                self.diags.push(Diagnostic::new(
+                    codes::W0305,
+                    w.span,
+                    format!(
+                        "{} '{}' names '{}', which is not defined before it",
+                        schema.name, p.name.text, w.text
+                    ),
+                ));
                 continue;
             }
             if let ModRef::Prim(id) = self.lookup_modifier(&w.text, w.span) {
@@ -542,6 +680,241 @@ impl Lowering<'_> {
                 .with_hint("remove it, or keep it in a .mat library file where unused materials are expected"),
             );
         }
+    }
+
+    /// The xform-style transform at the end of the string arguments. Radiance rejects
+    /// a bad one when it reads the primitive (oconv for instances and meshes, the
+    /// renderer for patterns and textures).
+    fn parse_transform(&mut self, p: &Primitive, schema: &PrimitiveType) -> Transform {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
+        let start = match schema.name {
+            // Everything after the octree or mesh file is the transform.
+            "instance" | "mesh" => 1,
+            _ => match schema.strings.transform_start(&words) {
+                Some(s) => s,
+                None => return Transform::IDENTITY,
+            },
+        };
+        let spanned: Vec<(&str, Span)> = p
+            .strings
+            .items
+            .iter()
+            .skip(start)
+            .map(|w| (w.text.as_str(), w.span))
+            .collect();
+        if spanned.is_empty() {
+            return Transform::IDENTITY;
+        }
+        match Transform::parse(&spanned) {
+            Ok(t) => t,
+            Err(d) => {
+                self.diags
+                    .push(d.with_label(p.kind.span, format!("transform of this {}", schema.name)));
+                Transform::IDENTITY
+            }
+        }
+    }
+
+    /// The functions and variables a primitive names must exist in its function file
+    /// (or rayinit.cal, or the renderer), and what they reach when evaluated must be
+    /// defined too; the file itself must parse. Radiance finds these only when a ray
+    /// first evaluates the primitive.
+    fn check_functions(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
+        let kinds: Vec<Option<StringKind>> = (0..words.len())
+            .map(|i| schema.strings.arg_in(i, &words).map(|(a, _)| a.kind))
+            .collect();
+        let uses_functions = kinds
+            .iter()
+            .any(|k| matches!(k, Some(StringKind::Function | StringKind::FunctionName)));
+        if !uses_functions {
+            return;
+        }
+        let cal = p
+            .strings
+            .items
+            .iter()
+            .zip(&kinds)
+            .find(|(_, k)| **k == Some(StringKind::File(FileKind::Cal)))
+            .map(|(w, _)| w);
+        let key = cal.map_or(".", |w| w.text.as_str()).to_string();
+        if !self.function_files.contains_key(&key) {
+            let loaded = match cal {
+                Some(w) if w.text != "." => self
+                    .files
+                    .load(&w.text, FileKind::Cal, w.span.file)
+                    .map(|(file, text)| (FunctionFile::load(file, &w.text, &text), w.span)),
+                _ => Some((FunctionFile::load(FileId(u32::MAX), ".", ""), p.kind.span)),
+            };
+            if let Some((ff, user)) = &loaded {
+                for e in &ff.errors {
+                    self.diags
+                        .push(e.clone().with_label(*user, "loaded by this primitive"));
+                }
+            }
+            self.function_files
+                .insert(key.clone(), loaded.map(|(ff, _)| ff));
+        }
+        let Some(Some(ff)) = self.function_files.get(&key) else {
+            return;
+        };
+        if !ff.errors.is_empty() {
+            return;
+        }
+        let mut found = Vec::new();
+        for (w, k) in p.strings.items.iter().zip(&kinds) {
+            if !matches!(k, Some(StringKind::Function | StringKind::FunctionName))
+                || !functions::is_plain_name(&w.text)
+            {
+                continue;
+            }
+            if !ff.defines(&w.text) {
+                let known = ff.module.known_names();
+                found.push(functions::undefined_in_file(&w.text, &key, w.span, &known));
+                continue;
+            }
+            for (name, span) in ff.undefined_reached_from(&w.text) {
+                found.push(
+                    Diagnostic::new(
+                        codes::E0601,
+                        span,
+                        format!(
+                            "'{name}' is not defined, but evaluating '{}' reaches it",
+                            w.text
+                        ),
+                    )
+                    .with_label(w.span, "evaluated for this primitive")
+                    .with_hint("define it in the function file (or one loaded before it)"),
+                );
+            }
+        }
+        self.diags.extend(found);
+    }
+
+    /// A data-driven type needs one coordinate function per dimension of its data
+    /// file (spectral types one fewer: wavelength is the last dimension), written after
+    /// the function file and before any transform. Radiance checks this when it first
+    /// loads the data ("too few string arguments").
+    fn check_data_coordinates(&mut self, p: &Primitive, schema: &PrimitiveType) {
+        let words: Vec<&str> = p.strings.items.iter().map(|w| w.text.as_str()).collect();
+        let mut cal_at = None;
+        let mut dims = None;
+        let mut data_word = None;
+        for (i, w) in p.strings.items.iter().enumerate() {
+            match schema.strings.arg_in(i, &words).map(|(a, _)| a.kind) {
+                Some(StringKind::File(FileKind::Cal)) if cal_at.is_none() => cal_at = Some(i),
+                Some(StringKind::File(FileKind::Data)) => {
+                    let parsed = self
+                        .files
+                        .read(&w.text, FileKind::Data, w.span.file)
+                        .and_then(|t| crate::datafile::DataFile::parse(&t).ok());
+                    if let Some(d) = parsed {
+                        dims = Some(dims.unwrap_or(0).max(d.dimensions()));
+                        data_word = Some(w);
+                    }
+                }
+                _ => {}
+            }
+        }
+        let (Some(dims), Some(data_word)) = (dims, data_word) else {
+            return;
+        };
+        if schema.name == "specfile" {
+            if dims != 1 {
+                self.diags.push(Diagnostic::new(
+                    codes::E0308,
+                    data_word.span,
+                    format!(
+                        "specfile needs a 1-dimensional data file (wavelength); '{}' has {dims}",
+                        data_word.text
+                    ),
+                ));
+            }
+            return;
+        }
+        let Some(cal_at) = cal_at else { return };
+        let end = schema
+            .strings
+            .transform_start(&words)
+            .unwrap_or(words.len());
+        let coords = end.saturating_sub(cal_at + 1);
+        let needed = if schema.name.starts_with("spec") {
+            dims.saturating_sub(1)
+        } else {
+            dims
+        };
+        if coords < needed {
+            self.diags.push(
+                Diagnostic::new(
+                    codes::E0202,
+                    p.strings.count_span,
+                    format!(
+                        "{} '{}' gives {coords} coordinate function{} for the {dims}-dimensional data file '{}'; it needs {needed}",
+                        schema.name,
+                        p.name.text,
+                        if coords == 1 { "" } else { "s" },
+                        data_word.text
+                    ),
+                )
+                .with_label(data_word.span, format!("{dims}-dimensional data"))
+                .with_hint("after the function file, name one coordinate variable or function per data dimension"),
+            );
+        }
+    }
+
+    /// Keeps deferred errors whose condition holds and turns the rest into W0304
+    /// warnings, keeping the original code in the message.
+    fn settle_deferred(&mut self) {
+        let reachable = self.scene.reachable();
+        for (condition, index) in std::mem::take(&mut self.deferred) {
+            let (id, why) = match condition {
+                Deferred::IfUsed(id) => {
+                    if reachable.get(id.0 as usize).copied().unwrap_or(true) {
+                        continue;
+                    }
+                    (id, "nothing uses it, so Radiance never reads it")
+                }
+                Deferred::IfLightSource(id) => {
+                    if self.emits_light(id) {
+                        continue;
+                    }
+                    (
+                        id,
+                        "its material emits no light, so Radiance never reads it",
+                    )
+                }
+            };
+            let name = self
+                .scene
+                .get(id)
+                .map(|p| p.name.clone())
+                .unwrap_or_default();
+            if let Some(d) = self.diags.get_mut(index) {
+                d.message = format!("[{}] {} ('{name}': {why})", d.code.id, d.message);
+                d.code = codes::W0304;
+                d.severity = codes::W0304.severity;
+            }
+        }
+    }
+
+    /// Whether the first material in a primitive's modifier chain emits light.
+    fn emits_light(&self, id: PrimId) -> bool {
+        let Some(p) = self.scene.get(id) else {
+            return false;
+        };
+        let mut next = p.modifier;
+        for _ in 0..256 {
+            let ModRef::Prim(m) = next else { return false };
+            let Some((category, modifier)) = self.chain_link(m) else {
+                return false;
+            };
+            match category {
+                Category::Light => return true,
+                Category::Material => return false,
+                _ => next = modifier,
+            }
+        }
+        false
     }
 
     /// What an element of a modifier chain really is: aliases are followed to their
@@ -618,10 +991,15 @@ impl Lowering<'_> {
         let rgb = |i: usize| -> Rgb { [r[i], r[i + 1], r[i + 2]] };
         let first_string = || s.first().cloned();
         match schema.name {
-            "source" => PrimKind::Source {
-                direction: v3(0),
-                angle: r[3],
-            },
+            "source" => {
+                if v3(0) == [0.0; 3] {
+                    self.zero_direction(p, 0);
+                }
+                PrimKind::Source {
+                    direction: v3(0),
+                    angle: r[3],
+                }
+            }
             "sphere" | "bubble" => {
                 self.check_radius(p, r[3], 3);
                 let (center, radius) = (v3(0), r[3]);
@@ -715,11 +1093,16 @@ impl Lowering<'_> {
                 color: rgb(0),
                 max_radius: r[3],
             },
-            "spotlight" => PrimKind::Spotlight {
-                color: rgb(0),
-                angle: r[3],
-                direction: v3(4),
-            },
+            "spotlight" => {
+                if v3(4) == [0.0; 3] {
+                    self.zero_direction(p, 4);
+                }
+                PrimKind::Spotlight {
+                    color: rgb(0),
+                    angle: r[3],
+                    direction: v3(4),
+                }
+            }
             "mirror" => PrimKind::Mirror {
                 alternate: first_string(),
                 color: rgb(0),
@@ -760,6 +1143,22 @@ impl Lowering<'_> {
             "antimatter" => PrimKind::Antimatter { modifiers: s },
             _ => other(p),
         }
+    }
+
+    /// Radiance stops with "zero direction" when it sets up such a source.
+    fn zero_direction(&mut self, p: &Primitive, first: usize) {
+        let span = real_span(p, first).to(real_span(p, first + 2));
+        self.diags.push(
+            Diagnostic::new(
+                codes::E0203,
+                span,
+                format!(
+                    "the direction of {} '{}' is the zero vector",
+                    p.kind.text, p.name.text
+                ),
+            )
+            .with_hint("give the direction the light travels toward, e.g. 0 0 -1"),
+        );
     }
 
     fn degenerate(&mut self, p: &Primitive, span: Span, why: &str) {
@@ -1114,6 +1513,10 @@ mod tests {
                 ["loop"] => Expansion::Text {
                     file,
                     text: "!loop\n".into(),
+                },
+                ["fail"] => Expansion::Failed {
+                    message: "it failed".into(),
+                    hint: None,
                 },
                 _ => Expansion::NotExpanded {
                     reason: "not a generator".into(),

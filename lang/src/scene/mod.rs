@@ -2,6 +2,7 @@
 
 pub mod command;
 pub mod format;
+pub mod functions;
 pub mod ir;
 pub mod lexer;
 pub mod lower;

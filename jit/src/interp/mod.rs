@@ -1,0 +1,214 @@
+//! The reference interpreter: runs a resolved calcomp [`Module`] record by record the
+//! way rcalc does (rcalc.c `execute`, `putout`): a new evaluation clock per record so
+//! `=` values are recomputed, `cond` filtering, `recno`/`outno`, and outputs in
+//! ascending column order.
+
+mod columns;
+mod format;
+
+pub use columns::{Record, c_atof};
+pub use format::{format_g, format_outputs};
+
+use radc_lang::cal::Module;
+use radc_lang::cal::eval::{EvalError, Evaluator, MathErrors, NoInput, Warning};
+use radc_lang::cal::ir::DefId;
+use radc_lang::cal::syntax::DefKind;
+use std::fmt;
+
+/// Everything that can stop the interpreter: the one error type of this layer.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Error {
+    /// A fatal calcomp evaluation error (undefined name, missing argument, ...).
+    Eval(EvalError),
+    /// rcalc refuses a `cond` defined with `:` ("cond: defined as constant").
+    ConstantCond,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Eval(e) => e.fmt(f),
+            Error::ConstantCond => write!(f, "cond: defined as constant"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+impl From<EvalError> for Error {
+    fn from(e: EvalError) -> Self {
+        Error::Eval(e)
+    }
+}
+
+/// One output record: `(column, value)` in ascending column order.
+pub type Outputs = Vec<(u32, f64)>;
+
+pub struct Interpreter<'m> {
+    module: &'m Module,
+    ev: Evaluator<'m>,
+    cond: Option<radc_lang::cal::ir::SymId>,
+    recno: Option<DefId>,
+    outno: Option<DefId>,
+    nrecs: u64,
+    nout: u64,
+    partial: Outputs,
+}
+
+impl<'m> Interpreter<'m> {
+    /// `recno` and `outno` are set per record only if the program names them (rcalc
+    /// checks `varlookup`); call [`Module::set_variable`] for them before optimizing if
+    /// [`Module::lookup`] finds them, as `radc calc` does.
+    pub fn new(module: &'m Module, policy: MathErrors) -> Result<Self, Error> {
+        let cond = module.lookup("cond").filter(|&s| {
+            module
+                .current_def(s)
+                .is_some_and(|d| !module.def(d).is_function())
+        });
+        if let Some(s) = cond {
+            if module
+                .current_def(s)
+                .is_some_and(|d| module.def(d).kind == DefKind::Constant)
+            {
+                return Err(Error::ConstantCond);
+            }
+        }
+        let var = |name: &str| {
+            module
+                .lookup(name)
+                .and_then(|s| module.current_def(s))
+                .filter(|&d| !module.def(d).is_function())
+        };
+        Ok(Interpreter {
+            module,
+            ev: Evaluator::new(module).with_policy(policy),
+            cond,
+            recno: var("recno"),
+            outno: var("outno"),
+            nrecs: 0,
+            nout: 0,
+            partial: Vec::new(),
+        })
+    }
+
+    /// rcalc `-n`: one record with no input.
+    pub fn single(&mut self) -> Result<Outputs, Error> {
+        self.ev.next_record();
+        self.outputs(&mut NoInput)
+    }
+
+    /// One input record: `None` when `cond` rejects it.
+    pub fn record(&mut self, record: &mut Record) -> Result<Option<Outputs>, Error> {
+        self.nrecs += 1;
+        if let Some(d) = self.recno {
+            self.ev.set_value(d, self.nrecs as f64);
+        }
+        if let Some(d) = self.outno {
+            self.ev.set_value(d, (self.nout + 1) as f64);
+        }
+        self.ev.next_record();
+        if let Some(c) = self.cond {
+            if self.ev.variable(c, record)? <= 0.0 {
+                return Ok(None);
+            }
+        }
+        let out = self.outputs(record)?;
+        self.nout += 1;
+        Ok(Some(out))
+    }
+
+    fn outputs(&mut self, input: &mut dyn radc_lang::cal::eval::Input) -> Result<Outputs, Error> {
+        let mut out = Vec::with_capacity(self.module.outputs().len());
+        for (chan, o) in self.module.outputs() {
+            match self.ev.eval_top(&o.body, input) {
+                Ok(v) => out.push((*chan, v)),
+                Err(e) => {
+                    self.partial = out;
+                    return Err(e.into());
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The columns of a failed record computed before the error: rcalc has printed
+    /// them by the time it stops.
+    pub fn take_partial(&mut self) -> Outputs {
+        std::mem::take(&mut self.partial)
+    }
+
+    /// Warnings raised since the last call, in order (rcalc prints them as they come).
+    pub fn take_warnings(&mut self) -> Vec<Warning> {
+        std::mem::take(&mut self.ev.warnings)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use radc_lang::FileId;
+    use radc_lang::cal::Env;
+
+    fn run(src: &str, line: &str) -> (String, Vec<String>) {
+        let mut m = Module::new(&Env::rcalc());
+        let d = m.add_source(FileId(0), src);
+        assert!(d.iter().all(|d| !d.is_error()), "{d:?}");
+        m.optimize();
+        let mut it = Interpreter::new(&m, MathErrors::default()).expect("interpreter");
+        let mut rec = Record::new(line, '\t');
+        let out = it.record(&mut rec).expect("record").unwrap_or_default();
+        let warns = it.take_warnings().iter().map(|w| w.to_string()).collect();
+        (format_outputs(&out, '\t'), warns)
+    }
+
+    #[test]
+    fn errors_propagate_through_library_calls_only() {
+        // Checked against rcalc: `echo 0 | rcalc -e 'z=$1;$1=max(1/z,5);$2=1+max(1,2);$3=1+1/z'`
+        let (out, w) = run("z=$1;$1=max(1/z,5);$2=1+max(1,2);$3=1+1/z", "0\n");
+        assert_eq!(out, "0\t3\t1\n");
+        assert_eq!(
+            w,
+            ["Division by zero", "max(): range error", "Division by zero"]
+        );
+    }
+
+    #[test]
+    fn cached_values_do_not_reraise() {
+        let (out, _) = run("z=$1; a=1/z; $1=a; $2=sqrt(a+4)", "0\n");
+        assert_eq!(out, "0\t2\n");
+    }
+
+    #[test]
+    fn flattening_combines_constants() {
+        let (out, _) = run("$1=$1+1e20-1e20;$2=-$1+-$1;$3=-$1", "0\n");
+        assert_eq!(out, "0\t0\t-0\n");
+        let (out, _) = run("$1=$1+1e20-1e20", "1\n");
+        assert_eq!(out, "1\n");
+    }
+
+    #[test]
+    fn cond_filters_and_recno_counts() {
+        let mut m = Module::new(&Env::rcalc());
+        m.add_source(FileId(0), "cond=$1-1; $1=$1");
+        m.optimize();
+        let mut it = Interpreter::new(&m, MathErrors::default()).expect("interpreter");
+        assert_eq!(it.record(&mut Record::new("1", '\t')), Ok(None));
+        assert_eq!(
+            it.record(&mut Record::new("2", '\t')),
+            Ok(Some(vec![(1, 2.0)]))
+        );
+    }
+
+    #[test]
+    fn undefined_is_an_error_only_when_evaluated() {
+        let (out, _) = run("a = nosuch; $1 = 1", "\n");
+        assert_eq!(out, "1\n");
+        let mut m = Module::new(&Env::rcalc());
+        m.add_source(FileId(0), "$1 = nosuch");
+        let mut it = Interpreter::new(&m, MathErrors::default()).expect("interpreter");
+        assert_eq!(
+            it.single(),
+            Err(Error::Eval(EvalError::UndefinedVariable("nosuch".into())))
+        );
+    }
+}

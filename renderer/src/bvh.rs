@@ -1,0 +1,256 @@
+//! A bounding volume hierarchy over the scene's surfaces: binned SAH splits, subtrees
+//! built in parallel with rayon, flattened depth-first for traversal.
+
+use crate::math::{Bounds, Vec3};
+use crate::ray::Ray;
+
+const BINS: usize = 16;
+const LEAF_SIZE: usize = 4;
+/// Below this many primitives a subtree is built on the current thread.
+const PARALLEL_THRESHOLD: usize = 4096;
+
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// Primitive indices, leaves refer to ranges of this.
+    order: Vec<u32>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Bounds,
+    /// Leaf: `count > 0`, primitives `order[first..first + count]`. Interior: `count == 0`,
+    /// left child is the next node, right child at `first`.
+    first: u32,
+    count: u32,
+    axis: u8,
+}
+
+enum Build {
+    Leaf(Bounds, Vec<u32>),
+    Interior(Bounds, u8, Box<Build>, Box<Build>),
+}
+
+#[derive(Clone, Copy)]
+struct Item {
+    index: u32,
+    bounds: Bounds,
+    centroid: Vec3,
+}
+
+impl Bvh {
+    pub fn build(bounds: &[Bounds]) -> Bvh {
+        let items: Vec<Item> = bounds
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.min.is_finite() && b.max.is_finite())
+            .map(|(i, b)| Item {
+                index: i as u32,
+                bounds: *b,
+                centroid: b.centroid(),
+            })
+            .collect();
+        if items.is_empty() {
+            return Bvh::default();
+        }
+        let tree = build(items);
+        let mut bvh = Bvh::default();
+        bvh.flatten(tree);
+        bvh
+    }
+
+    fn flatten(&mut self, b: Build) -> usize {
+        let at = self.nodes.len();
+        match b {
+            Build::Leaf(bounds, idx) => {
+                self.nodes.push(Node {
+                    bounds,
+                    first: self.order.len() as u32,
+                    count: idx.len() as u32,
+                    axis: 0,
+                });
+                self.order.extend(idx);
+            }
+            Build::Interior(bounds, axis, l, r) => {
+                self.nodes.push(Node {
+                    bounds,
+                    first: 0,
+                    count: 0,
+                    axis,
+                });
+                self.flatten(*l);
+                let right = self.flatten(*r);
+                self.nodes[at].first = right as u32;
+            }
+        }
+        at
+    }
+
+    /// Visits every primitive whose box the ray enters before `limit`, near subtrees
+    /// first. `visit` tests one primitive and returns the new limit (which may only
+    /// shrink).
+    pub fn traverse(&self, ray: &Ray, mut limit: f64, mut visit: impl FnMut(u32) -> f64) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let inv = Vec3::ONE / ray.dir;
+        let mut stack = [0u32; 64];
+        let mut sp = 1usize;
+        while sp > 0 {
+            sp -= 1;
+            let node = self.nodes[stack[sp] as usize];
+            if !node.bounds.hit(ray.org, inv, limit) {
+                continue;
+            }
+            if node.count > 0 {
+                let range = node.first as usize..(node.first + node.count) as usize;
+                for &i in &self.order[range] {
+                    limit = limit.min(visit(i));
+                }
+                continue;
+            }
+            let left = stack[sp] + 1;
+            let right = node.first;
+            // Push the far child first so the near one is visited first.
+            let (near, far) = if ray.dir[node.axis as usize] < 0.0 {
+                (right, left)
+            } else {
+                (left, right)
+            };
+            if sp + 2 > stack.len() {
+                // Deeper than any balanced build of this size reaches; visit in order.
+                for i in 0..self.order.len() {
+                    limit = limit.min(visit(self.order[i]));
+                }
+                return;
+            }
+            stack[sp] = far;
+            stack[sp + 1] = near;
+            sp += 2;
+        }
+    }
+}
+
+fn bounds_of(items: &[Item]) -> (Bounds, Bounds) {
+    items
+        .iter()
+        .fold((Bounds::EMPTY, Bounds::EMPTY), |(b, c), it| {
+            (b.union(it.bounds), c.union(Bounds::point(it.centroid)))
+        })
+}
+
+fn build(mut items: Vec<Item>) -> Build {
+    let (bounds, cbounds) = bounds_of(&items);
+    if items.len() <= LEAF_SIZE {
+        return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
+    }
+    let extent = cbounds.max - cbounds.min;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    if extent[axis] <= 0.0 || !extent[axis].is_finite() {
+        return split_middle(items, bounds, axis);
+    }
+    let Some(split) = sah_split(&items, &cbounds, axis, bounds) else {
+        if items.len() <= 4 * LEAF_SIZE {
+            return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
+        }
+        return split_middle(items, bounds, axis);
+    };
+    let (lo, span) = (cbounds.min[axis], extent[axis]);
+    let bin = |c: Vec3| (((c[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
+    let right: Vec<Item> = items
+        .iter()
+        .filter(|i| bin(i.centroid) > split)
+        .copied()
+        .collect();
+    items.retain(|i| bin(i.centroid) <= split);
+    if items.is_empty() || right.is_empty() {
+        items.extend(right);
+        return split_middle(items, bounds, axis);
+    }
+    children(items, right, bounds, axis)
+}
+
+fn children(left: Vec<Item>, right: Vec<Item>, bounds: Bounds, axis: usize) -> Build {
+    let (l, r) = if left.len() + right.len() > PARALLEL_THRESHOLD {
+        rayon::join(|| build(left), || build(right))
+    } else {
+        (build(left), build(right))
+    };
+    Build::Interior(bounds, axis as u8, Box::new(l), Box::new(r))
+}
+
+fn split_middle(mut items: Vec<Item>, bounds: Bounds, axis: usize) -> Build {
+    items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+    let right = items.split_off(items.len() / 2);
+    children(items, right, bounds, axis)
+}
+
+/// The bin boundary minimizing the surface area heuristic, if splitting beats a leaf.
+fn sah_split(items: &[Item], cb: &Bounds, axis: usize, bounds: Bounds) -> Option<usize> {
+    let (lo, span) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
+    let mut bins = [(Bounds::EMPTY, 0usize); BINS];
+    for it in items {
+        let b = (((it.centroid[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
+        bins[b].0 = bins[b].0.union(it.bounds);
+        bins[b].1 += 1;
+    }
+    let mut right_area = [0.0; BINS];
+    let mut acc = (Bounds::EMPTY, 0usize);
+    for i in (1..BINS).rev() {
+        acc = (acc.0.union(bins[i].0), acc.1 + bins[i].1);
+        right_area[i] = if acc.1 > 0 {
+            acc.0.surface_area() * acc.1 as f64
+        } else {
+            0.0
+        };
+    }
+    let mut best = (f64::INFINITY, 0);
+    let mut left = (Bounds::EMPTY, 0usize);
+    for (i, bin) in bins.iter().enumerate().take(BINS - 1) {
+        left = (left.0.union(bin.0), left.1 + bin.1);
+        if left.1 == 0 || left.1 == items.len() {
+            continue;
+        }
+        let cost = left.0.surface_area() * left.1 as f64 + right_area[i + 1];
+        if cost < best.0 {
+            best = (cost, i);
+        }
+    }
+    let leaf_cost = bounds.surface_area() * items.len() as f64;
+    (best.0.is_finite() && (best.0 < leaf_cost || items.len() > LEAF_SIZE * 4)).then_some(best.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_every_box_on_the_ray() {
+        let bounds: Vec<Bounds> = (0..1000)
+            .map(|i| {
+                let c = Vec3::new(i as f64, (i % 7) as f64, 0.0);
+                Bounds {
+                    min: c - Vec3::splat(0.25),
+                    max: c + Vec3::splat(0.25),
+                }
+            })
+            .collect();
+        let bvh = Bvh::build(&bounds);
+        let ray = Ray::new(Vec3::new(-5.0, 3.0, 0.0), Vec3::X);
+        let mut seen = Vec::new();
+        bvh.traverse(&ray, f64::INFINITY, |i| {
+            seen.push(i);
+            f64::INFINITY
+        });
+        let expect: Vec<u32> = (0..1000).filter(|i| i % 7 == 3).collect();
+        seen.sort();
+        seen.retain(|i| expect.contains(i));
+        assert_eq!(seen, expect);
+    }
+}

@@ -1,0 +1,181 @@
+//! How the CLI expands `!command` lines in scenes: Radiance's generators that radc
+//! builds in (genbox, genprism, genrev, gensky, gensurf, genworm, xform) run in-process; any other command runs through
+//! `sh` only when the user passed `--allow-commands`, and is otherwise reported as not
+//! expanded. Expanded text becomes a source file of its own so diagnostics inside it
+//! can be shown against it.
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+
+use radc_generators::{GenError, Host};
+use radc_lang::FileId;
+use radc_lang::scene::{CommandExpander, Expansion};
+
+/// Files a check reads beyond the scenes named on the command line (command
+/// outputs, function files), numbered after the sources already read so diagnostics
+/// can point into them. Shared by the command expander and the file lookup.
+pub struct PendingSources {
+    first_id: u32,
+    /// (display name, text, folder) in id order.
+    files: RefCell<Vec<(String, String, PathBuf)>>,
+}
+
+impl PendingSources {
+    pub fn new(first_id: u32) -> Self {
+        PendingSources {
+            first_id,
+            files: RefCell::new(Vec::new()),
+        }
+    }
+
+    pub fn add(&self, name: String, text: String, dir: PathBuf) -> FileId {
+        let mut files = self.files.borrow_mut();
+        files.push((name, text, dir));
+        FileId(self.first_id + files.len() as u32 - 1)
+    }
+
+    /// The folder a pending file's relative names resolve from.
+    pub fn dir_of(&self, file: FileId) -> Option<PathBuf> {
+        let index = file.0.checked_sub(self.first_id)?;
+        self.files.borrow().get(index as usize).map(|e| e.2.clone())
+    }
+
+    /// The files, as (display name, text), in id order.
+    pub fn into_sources(self) -> Vec<(String, String)> {
+        self.files
+            .into_inner()
+            .into_iter()
+            .map(|(name, text, _)| (name, text))
+            .collect()
+    }
+}
+
+pub struct Commands<'a> {
+    /// The folder of each scene file, so relative names resolve from the scene.
+    scene_dirs: Vec<(FileId, PathBuf)>,
+    allow_commands: bool,
+    pending: &'a PendingSources,
+}
+
+impl<'a> Commands<'a> {
+    pub fn new(
+        scene_dirs: Vec<(FileId, PathBuf)>,
+        pending: &'a PendingSources,
+        allow_commands: bool,
+    ) -> Self {
+        Commands {
+            scene_dirs,
+            allow_commands,
+            pending,
+        }
+    }
+
+    fn dir_of(&self, file: FileId) -> PathBuf {
+        if let Some((_, d)) = self.scene_dirs.iter().find(|(f, _)| *f == file) {
+            return d.clone();
+        }
+        self.pending.dir_of(file).unwrap_or_default()
+    }
+
+    /// Runs a command line: a built-in generator, or a pipeline of them (`genbox ... |
+    /// xform -rz 90`), in-process; anything else through the shell, if allowed.
+    fn run(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
+        let mut host = SceneHost {
+            dir: dir.to_path_buf(),
+            stdin: String::new(),
+        };
+        match radc_generators::command::run_builtin(command, &mut host) {
+            Some(Ok(text)) => Ok(text),
+            Some(Err(e)) => {
+                let program = command.split_whitespace().next().unwrap_or("command");
+                Err(failed(program.rsplit('/').next().unwrap_or(program), e))
+            }
+            None => self.shell(command, dir),
+        }
+    }
+
+    fn shell(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
+        if !self.allow_commands {
+            return Err(Expansion::NotExpanded {
+                reason: "radc builds in genbox, genprism, genrev, gensky, gensurf, genworm and \
+                         xform; other commands run only with --allow-commands"
+                    .into(),
+            });
+        }
+        let mut sh = std::process::Command::new("sh");
+        sh.arg("-c").arg(command);
+        if !dir.as_os_str().is_empty() {
+            sh.current_dir(dir);
+        }
+        match sh.output() {
+            Ok(out) if out.status.success() => {
+                Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+            }
+            Ok(out) => Err(Expansion::Failed {
+                message: format!("command exited with {}", out.status),
+                hint: Some(String::from_utf8_lossy(&out.stderr).trim().to_string())
+                    .filter(|s| !s.is_empty()),
+            }),
+            Err(e) => Err(Expansion::Failed {
+                message: format!("cannot run the command: {e}"),
+                hint: None,
+            }),
+        }
+    }
+}
+
+fn failed(program: &str, e: GenError) -> Expansion {
+    match e {
+        GenError::Scene(m) if m.contains("nested more than") => Expansion::Cycle {
+            message: format!("{program}: {m}"),
+        },
+        GenError::Transform(d) => Expansion::Failed {
+            message: format!("{program}: {}", d.message),
+            hint: d.hint,
+        },
+        other => Expansion::Failed {
+            message: format!("{program}: {other}"),
+            hint: None,
+        },
+    }
+}
+
+impl CommandExpander for Commands<'_> {
+    fn expand(&self, command: &str, from: FileId, _depth: u32) -> Expansion {
+        let dir = self.dir_of(from);
+        match self.run(command, &dir) {
+            Ok(text) => {
+                let file = self.pending.add(format!("!{command}"), text.clone(), dir);
+                Expansion::Text { file, text }
+            }
+            Err(e) => e,
+        }
+    }
+}
+
+/// Files for generators run from a scene: relative to the scene's folder, then RAYPATH.
+struct SceneHost {
+    dir: PathBuf,
+    /// The previous pipeline stage's output.
+    stdin: String,
+}
+
+impl Host for SceneHost {
+    fn read_file(&mut self, path: &str) -> Result<String, GenError> {
+        let p = Path::new(path);
+        let mut candidates = vec![self.dir.join(p)];
+        if let (false, Some(raypath)) = (p.is_absolute(), std::env::var_os("RAYPATH")) {
+            candidates.extend(std::env::split_paths(&raypath).map(|d| d.join(p)));
+        }
+        for c in &candidates {
+            if let Ok(bytes) = std::fs::read(c) {
+                return Ok(String::from_utf8_lossy(&bytes).into_owned());
+            }
+        }
+        Err(GenError::Host(format!("cannot find file \"{path}\"")))
+    }
+
+    fn read_stdin(&mut self) -> Result<String, GenError> {
+        Ok(std::mem::take(&mut self.stdin))
+    }
+}

@@ -1,0 +1,154 @@
+//! `radc genbox`, `radc genprism`, `radc gensky`, `radc xform`: Radiance's generators, same options,
+//! same output (see the `radc-generators` crate). This file is the host that gives
+//! them files, standard input and, only with `--allow-commands`, a shell.
+
+use radc_generators::{GenError, Host};
+use std::io::{Read, Write};
+use std::process::ExitCode;
+
+pub fn genbox(args: &[String]) -> ExitCode {
+    finish("genbox", radc_generators::genbox(args))
+}
+
+pub fn gensky(args: &[String]) -> ExitCode {
+    finish("gensky", radc_generators::gensky(args))
+}
+
+pub fn genworm(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::genworm(&args, &mut host)
+    });
+    finish("genworm", result)
+}
+
+pub fn genrev(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::genrev(&args, &mut host)
+    });
+    finish("genrev", result)
+}
+
+pub fn gensurf(args: &[String]) -> ExitCode {
+    let args = args.to_vec();
+    let result = with_deep_stack(move || {
+        let mut host = FileHost::default();
+        radc_generators::gensurf(&args, &mut host)
+    });
+    finish("gensurf", result)
+}
+
+/// calcomp recursion is legal and can be deep (genworm's curves, or a genworm run by a
+/// `!` line inside a scene given to xform): evaluate on a thread with a stack to match,
+/// as `radc calc` does.
+fn with_deep_stack(
+    work: impl FnOnce() -> Result<String, GenError> + Send + 'static,
+) -> Result<String, GenError> {
+    let worker = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(work);
+    match worker.map(|h| h.join()) {
+        Ok(Ok(result)) => result,
+        _ => Err(GenError::Invalid("evaluation failed".into())),
+    }
+}
+
+pub fn genprism(args: &[String]) -> ExitCode {
+    let mut host = FileHost::default();
+    finish("genprism", radc_generators::genprism(args, &mut host))
+}
+
+/// `radc xform [--allow-commands] ARGS`: without the flag, `!` commands in a scene
+/// other than genbox, genprism and xform are refused rather than run.
+pub fn xform(args: &[String]) -> ExitCode {
+    let mut host = FileHost::default();
+    let args = match args.split_first() {
+        Some((first, rest)) if first == "--allow-commands" => {
+            host.allow_commands = true;
+            rest.to_vec()
+        }
+        _ => args.to_vec(),
+    };
+    let result = with_deep_stack(move || radc_generators::xform(&args, &mut host));
+    finish("xform", result)
+}
+
+fn finish(program: &str, result: Result<String, GenError>) -> ExitCode {
+    match result {
+        Ok(text) => {
+            let mut out = std::io::stdout().lock();
+            match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(_) => ExitCode::FAILURE,
+            }
+        }
+        Err(GenError::Usage(u)) => {
+            eprintln!("radc {program}: usage: {u}");
+            ExitCode::from(super::USAGE_ERROR)
+        }
+        Err(GenError::Transform(d)) => {
+            eprintln!("radc {program}: error[{}]: {}", d.code.id, d.message);
+            if let Some(h) = &d.hint {
+                eprintln!("  hint: {h}");
+            }
+            ExitCode::from(super::USAGE_ERROR)
+        }
+        Err(e) => {
+            eprintln!("radc {program}: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Files from the file system, relative names also searched along RAYPATH as
+/// Radiance's `getpath()` does.
+#[derive(Default)]
+struct FileHost {
+    allow_commands: bool,
+}
+
+impl Host for FileHost {
+    fn read_file(&mut self, path: &str) -> Result<String, GenError> {
+        let mut candidates = vec![std::path::PathBuf::from(path)];
+        if let (false, Ok(raypath)) = (path.starts_with('/'), std::env::var("RAYPATH")) {
+            let dirs = raypath.split(':').map(std::path::Path::new);
+            candidates.extend(dirs.map(|d| d.join(path)));
+        }
+        for c in &candidates {
+            if let Ok(bytes) = std::fs::read(c) {
+                return Ok(String::from_utf8_lossy(&bytes).into_owned());
+            }
+        }
+        Err(GenError::Host(format!("cannot find file \"{path}\"")))
+    }
+
+    fn read_stdin(&mut self) -> Result<String, GenError> {
+        let mut bytes = Vec::new();
+        std::io::stdin()
+            .read_to_end(&mut bytes)
+            .map_err(|e| GenError::Host(format!("cannot read standard input: {e}")))?;
+        Ok(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
+        if !self.allow_commands {
+            return Err(GenError::Host(format!(
+                "not running \"{command}\": only genbox, genprism and xform are built in \
+                 (pass --allow-commands first to run it with sh)"
+            )));
+        }
+        let mut sh = std::process::Command::new("sh");
+        sh.arg("-c").arg(command);
+        if !dir.is_empty() {
+            sh.current_dir(dir);
+        }
+        let output = sh
+            .output()
+            .map_err(|e| GenError::Host(format!("cannot execute \"{command}\": {e}")))?;
+        std::io::stderr().write_all(&output.stderr).ok();
+        Ok(String::from_utf8_lossy(&output.stdout).into_owned())
+    }
+}

@@ -1,0 +1,530 @@
+//! `radc trace`: rtrace for scene files. Reads rays `ox oy oz dx dy dz` from stdin and
+//! writes what `-o` asks for, in rtrace's formats (`%e` and a tab after each number,
+//! one ray per line; or binary `-ff`/`-fd`). Takes rtrace's options; the ones radc does
+//! not model yet are refused rather than silently ignored.
+//!
+//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`), no virtual
+//! sources (`-dr 0`) and no source jitter (`-dj 0`).
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use radc_lang::Severity;
+use radc_renderer::math::{Vec3, normalize};
+use radc_renderer::{Options, RayState, Scene, Target, Tracer};
+use rayon::prelude::*;
+
+use super::USAGE_ERROR;
+use super::report::{self, Sources};
+
+const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab 0] [-av r g b] \
+[-ds f] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
+
+/// Rays evaluated together (in parallel) between writes.
+const BATCH: usize = 4096;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Format {
+    Ascii,
+    Float,
+    Double,
+}
+
+impl Format {
+    fn from_char(c: char) -> Option<Format> {
+        match c {
+            'a' => Some(Format::Ascii),
+            'f' => Some(Format::Float),
+            'd' => Some(Format::Double),
+            _ => None,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Format::Ascii => "ascii",
+            Format::Float => "float",
+            Format::Double => "double",
+        }
+    }
+}
+
+/// One `-o` letter.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Output {
+    Value,
+    Origin,
+    Direction,
+    Point,
+    Normal,
+    SurfaceNormal,
+    EffectiveLength,
+    Length,
+    Surface,
+    Modifier,
+    Material,
+    Tilde,
+}
+
+impl Output {
+    fn parse(spec: &str) -> Result<Vec<Output>, String> {
+        if spec.is_empty() {
+            return Err("empty output specification".into());
+        }
+        spec.chars()
+            .map(|c| {
+                Ok(match c {
+                    'v' => Output::Value,
+                    'o' => Output::Origin,
+                    'd' => Output::Direction,
+                    'p' => Output::Point,
+                    'n' => Output::Normal,
+                    'N' => Output::SurfaceNormal,
+                    'l' => Output::EffectiveLength,
+                    'L' => Output::Length,
+                    's' => Output::Surface,
+                    'm' => Output::Modifier,
+                    'M' => Output::Material,
+                    '~' => Output::Tilde,
+                    _ => {
+                        return Err(format!(
+                            "output '{c}' is not supported (radc knows v o d p n N l L s m M ~)"
+                        ));
+                    }
+                })
+            })
+            .collect()
+    }
+
+    fn components(self) -> usize {
+        match self {
+            Output::Value | Output::Origin | Output::Direction | Output::Point | Output::Normal => {
+                3
+            }
+            Output::SurfaceNormal => 3,
+            Output::Tilde => 0,
+            _ => 1,
+        }
+    }
+}
+
+#[derive(Debug)]
+struct Args {
+    header: bool,
+    irradiance: bool,
+    outputs: Vec<Output>,
+    input: Format,
+    output: Format,
+    options: Options,
+    scenes: Vec<PathBuf>,
+}
+
+/// Radiance's boolean switches: `-x` toggles, `-x+` sets, `-x-` clears.
+pub(super) fn switch(arg: &str, name: &str, value: &mut bool) -> bool {
+    match arg.strip_prefix(name) {
+        Some("") => *value = !*value,
+        Some("+") => *value = true,
+        Some("-") => *value = false,
+        _ => return false,
+    }
+    true
+}
+
+fn parse_args(args: &[String]) -> Result<Args, String> {
+    let mut a = Args {
+        header: true,
+        irradiance: false,
+        outputs: vec![Output::Value],
+        input: Format::Ascii,
+        output: Format::Ascii,
+        options: Options::default(),
+        scenes: Vec::new(),
+    };
+    let mut it = args.iter().map(String::as_str).peekable();
+    let mut warn_off = false;
+    while let Some(arg) = it.next() {
+        match arg {
+            s if switch(s, "-h", &mut a.header) => {}
+            s if switch(s, "-I", &mut a.irradiance) => {}
+            s if switch(s, "-w", &mut warn_off) => {}
+            "-n" | "-x" | "-y" => {
+                number(&mut it, arg)?;
+            }
+            s if switch(s, "-i", &mut a.options.irradiance_at_hits) => {}
+            s if render_option(s, &mut it, &mut a.options)? => {}
+            s if s.starts_with("-o") => a.outputs = Output::parse(&s[2..])?,
+            s if s.starts_with("-f") => {
+                let f: Vec<char> = s[2..].chars().collect();
+                let (i, o) = match f.as_slice() {
+                    [c] => (*c, *c),
+                    [i, o] => (*i, *o),
+                    _ => return Err(format!("bad format '{s}'")),
+                };
+                a.input = Format::from_char(i).ok_or_else(|| format!("bad input format '{i}'"))?;
+                a.output =
+                    Format::from_char(o).ok_or_else(|| format!("bad output format '{o}'"))?;
+            }
+            "-help" | "--help" => return Err(String::new()),
+            s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),
+            path => a.scenes.push(PathBuf::from(path)),
+        }
+    }
+    if a.scenes.is_empty() {
+        return Err("no scene files".into());
+    }
+    Ok(a)
+}
+
+/// The next argument as a finite number.
+pub(super) fn number<'a>(
+    it: &mut impl Iterator<Item = &'a str>,
+    what: &str,
+) -> Result<f64, String> {
+    let v = it.next().ok_or_else(|| format!("{what} needs a value"))?;
+    v.parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| format!("{what}: '{v}' is not a number"))
+}
+
+/// Rendering options shared with `radc render` (rpict's): true when `arg` was one.
+pub(super) fn render_option<'a>(
+    arg: &str,
+    it: &mut impl Iterator<Item = &'a str>,
+    o: &mut Options,
+) -> Result<bool, String> {
+    match arg {
+        s if switch(s, "-bv", &mut o.backface_visible) => {}
+        "-ab" => {
+            if number(it, "-ab")? != 0.0 {
+                return Err(
+                    "indirect lighting (-ab > 0) is not implemented yet; use -ab 0 with -av".into(),
+                );
+            }
+        }
+        "-av" => o.ambient = Vec3::new(number(it, "-av")?, number(it, "-av")?, number(it, "-av")?),
+        "-ds" => o.source_size_ratio = number(it, "-ds")?,
+        "-dj" => {
+            if number(it, "-dj")? != 0.0 {
+                return Err("source jitter (-dj > 0) is not implemented yet; use -dj 0".into());
+            }
+        }
+        "-lr" => o.max_depth = number(it, "-lr")? as i32,
+        "-lw" => o.min_weight = number(it, "-lw")?,
+        "-st" => o.specular_threshold = number(it, "-st")?,
+        // Accepted for compatibility: radc tests every shadow (-dt 0), has no virtual
+        // sources (-dr 0), and the rest only matter for indirect light.
+        "-dt" | "-dc" | "-dr" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
+            number(it, arg)?;
+        }
+        s if s.starts_with("-u") || s.starts_with("-dv") => {}
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+pub fn run(args: &[String]) -> ExitCode {
+    let a = match parse_args(args) {
+        Ok(a) => a,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("radc trace: {e}");
+            }
+            eprintln!("{USAGE}");
+            return ExitCode::from(USAGE_ERROR);
+        }
+    };
+    let scene = match load_scene(&a.scenes, "trace") {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    if a.header {
+        let ncomp: usize = a.outputs.iter().map(|o| o.components()).sum();
+        let _ = write!(
+            out,
+            "#?RADIANCE\nradc trace {}\nSOFTWARE= radc {}\nNCOMP={ncomp}\nFORMAT={}\n\n",
+            args.join(" "),
+            env!("CARGO_PKG_VERSION"),
+            a.output.name()
+        );
+    }
+    let tracer = Tracer::new(&scene, a.options.clone());
+    let stdin = std::io::stdin();
+    let mut input = RayReader::new(BufReader::new(stdin.lock()), a.input);
+    let mut last = (Vec3::ZERO, Vec3::ZERO);
+    loop {
+        let (batch, flush, done) = input.batch(BATCH);
+        let results: Vec<RayState> = batch
+            .par_iter()
+            .map(|&(org, dir)| evaluate(&tracer, org, dir, a.irradiance))
+            .collect();
+        for r in &results {
+            write_ray(&mut out, r, &scene, &a);
+            last = (r.org, r.dir);
+        }
+        if flush {
+            // A zero direction: an empty record, then flush (rtrace's `bogusray`).
+            let mut bogus = RayState::primary(last.0, last.1);
+            bogus.normal = -last.1;
+            write_ray(&mut out, &bogus, &scene, &a);
+            let _ = out.flush();
+        }
+        if done {
+            break;
+        }
+    }
+    if out.flush().is_err() {
+        return ExitCode::from(1);
+    }
+    ExitCode::SUCCESS
+}
+
+fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, irradiance: bool) -> RayState {
+    normalize(&mut dir);
+    if irradiance {
+        tracer.irradiance(org, dir)
+    } else {
+        tracer.radiance(org, dir)
+    }
+}
+
+/// Reads the scene files as one scene, reports their diagnostics on stderr, and
+/// compiles it; scenes with errors, or with things radc cannot render, are refused.
+pub(super) fn load_scene(paths: &[PathBuf], command: &str) -> Result<Scene, ExitCode> {
+    let mut sources = Sources::default();
+    let mut diags = Vec::new();
+    let ir = super::check::check_scene(paths, false, &mut sources, &mut diags);
+    diags.sort_by_key(|d| (d.span.file, d.span.start));
+    report::eprint(&diags, &sources);
+    // A scene with an unexpanded `!` command is incomplete: rendering it would
+    // silently leave out whatever the command makes.
+    let unexpanded = diags.iter().any(|d| d.code == radc_lang::diagnostic::W0303);
+    if unexpanded {
+        eprintln!(
+            "radc {command}: the scene runs commands radc does not build in; nothing rendered"
+        );
+        return Err(ExitCode::from(1));
+    }
+    if diags.iter().any(|d| d.severity == Severity::Error) {
+        eprintln!("radc {command}: the scene has errors; nothing rendered");
+        return Err(ExitCode::from(1));
+    }
+    Scene::compile(&ir).map_err(|problems| {
+        for p in problems {
+            let place = ir
+                .get(p.prim)
+                .and_then(|prim| {
+                    let s = sources.get(prim.span.file)?;
+                    let (line, col) = s.lines.line_col(&s.text, prim.span.start as usize);
+                    Some(format!("{}:{line}:{col}: ", s.name))
+                })
+                .unwrap_or_default();
+            eprintln!("radc {command}: {place}cannot render {p}");
+        }
+        ExitCode::from(1)
+    })
+}
+
+/// Rays from stdin in rtrace's input formats.
+struct RayReader<R> {
+    input: R,
+    format: Format,
+    line: String,
+    words: std::collections::VecDeque<f64>,
+    eof: bool,
+}
+
+impl<R: BufRead> RayReader<R> {
+    fn new(input: R, format: Format) -> Self {
+        RayReader {
+            input,
+            format,
+            line: String::new(),
+            words: Default::default(),
+            eof: false,
+        }
+    }
+
+    /// Up to `n` rays; stops early after a zero-direction ray (a flush request, not
+    /// returned) or at the end of input (or at a word that is not a number).
+    fn batch(&mut self, n: usize) -> (Vec<(Vec3, Vec3)>, bool, bool) {
+        let mut out = Vec::new();
+        while out.len() < n {
+            let Some(v) = self.next_six() else {
+                return (out, false, true);
+            };
+            let org = Vec3::new(v[0], v[1], v[2]);
+            let dir = Vec3::new(v[3], v[4], v[5]);
+            if dir == Vec3::ZERO {
+                return (out, true, false);
+            }
+            out.push((org, dir));
+        }
+        (out, false, false)
+    }
+
+    fn next_six(&mut self) -> Option<[f64; 6]> {
+        let mut v = [0.0; 6];
+        for x in &mut v {
+            *x = self.next_number()?;
+        }
+        Some(v)
+    }
+
+    fn next_number(&mut self) -> Option<f64> {
+        if self.eof {
+            return None;
+        }
+        let r = match self.format {
+            Format::Ascii => self.next_word(),
+            Format::Float => {
+                let mut b = [0u8; 4];
+                self.input
+                    .read_exact(&mut b)
+                    .ok()
+                    .map(|_| f64::from(f32::from_ne_bytes(b)))
+            }
+            Format::Double => {
+                let mut b = [0u8; 8];
+                self.input
+                    .read_exact(&mut b)
+                    .ok()
+                    .map(|_| f64::from_ne_bytes(b))
+            }
+        };
+        if r.is_none() {
+            self.eof = true;
+        }
+        r
+    }
+
+    fn next_word(&mut self) -> Option<f64> {
+        while self.words.is_empty() {
+            self.line.clear();
+            if self.input.read_line(&mut self.line).ok()? == 0 {
+                return None;
+            }
+            for w in self.line.split_whitespace() {
+                // rtrace stops at the first word that is not a number.
+                let Ok(x) = w.parse::<f64>() else {
+                    self.words.push_back(f64::NAN);
+                    break;
+                };
+                self.words.push_back(x);
+            }
+        }
+        self.words.pop_front().filter(|x| !x.is_nan())
+    }
+}
+
+fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
+    let no_hit = matches!(r.hit, Target::None);
+    for o in &a.outputs {
+        match o {
+            Output::Value => put(out, a.output, &r.color.to_array()),
+            Output::Origin => put(out, a.output, &r.org.to_array()),
+            Output::Direction => put(out, a.output, &r.dir.to_array()),
+            Output::Point => put(out, a.output, &r.point.to_array()),
+            Output::Normal => put(
+                out,
+                a.output,
+                &if no_hit {
+                    [0.0; 3]
+                } else {
+                    r.normal.to_array()
+                },
+            ),
+            Output::SurfaceNormal => put(
+                out,
+                a.output,
+                &if no_hit {
+                    [0.0; 3]
+                } else {
+                    r.surface_normal().to_array()
+                },
+            ),
+            Output::EffectiveLength => put(out, a.output, &[r.effective_length()]),
+            Output::Length => put(out, a.output, &[r.length]),
+            Output::Surface | Output::Modifier | Output::Material => {
+                let name = names(r, scene, *o);
+                let _ = write!(out, "{name}\t");
+            }
+            Output::Tilde => {
+                let _ = write!(out, "~\t");
+            }
+        }
+    }
+    if a.output == Format::Ascii {
+        let _ = writeln!(out);
+    }
+}
+
+fn names(r: &RayState, scene: &Scene, o: Output) -> String {
+    let (name, modifier, material) = match r.hit {
+        Target::None => return "*".into(),
+        Target::Object(id) => match scene.object(id.0) {
+            Some(x) => (&x.name, &x.modifier_name, &x.material_name),
+            None => return "*".into(),
+        },
+        Target::Distant(i) => match scene.distant.get(i as usize) {
+            Some(x) => (&x.name, &x.modifier_name, &x.material_name),
+            None => return "*".into(),
+        },
+    };
+    match o {
+        Output::Surface => name.clone(),
+        Output::Modifier => modifier.clone(),
+        _ => material.clone(),
+    }
+}
+
+fn put(out: &mut impl Write, f: Format, v: &[f64]) {
+    let _ = match f {
+        Format::Ascii => v.iter().try_for_each(|x| write!(out, "{}\t", c_exp(*x))),
+        Format::Float => v
+            .iter()
+            .try_for_each(|x| out.write_all(&(*x as f32).to_ne_bytes())),
+        Format::Double => v.iter().try_for_each(|x| out.write_all(&x.to_ne_bytes())),
+    };
+}
+
+/// C's `%e`: six decimals and an exponent of at least two digits (`1.000000e+10`).
+pub(super) fn c_exp(x: f64) -> String {
+    if x.is_nan() {
+        return if x.is_sign_negative() { "-nan" } else { "nan" }.into();
+    }
+    if x.is_infinite() {
+        return if x < 0.0 { "-inf" } else { "inf" }.into();
+    }
+    let s = format!("{x:.6e}");
+    let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let sign = if exp < 0 { '-' } else { '+' };
+    format!("{mantissa}e{sign}{:02}", exp.unsigned_abs())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn c_exp_matches_printf() {
+        assert_eq!(c_exp(0.5), "5.000000e-01");
+        assert_eq!(c_exp(0.0), "0.000000e+00");
+        assert_eq!(c_exp(-0.0), "-0.000000e+00");
+        assert_eq!(c_exp(1e10), "1.000000e+10");
+        assert_eq!(c_exp(3.141718), "3.141718e+00");
+        assert_eq!(c_exp(-1.5e-120), "-1.500000e-120");
+        assert_eq!(c_exp(9.9999999e9), "1.000000e+10");
+    }
+
+    #[test]
+    fn switches_toggle() {
+        let a = parse_args(&["-h".into(), "-I+".into(), "x.rad".into()]).unwrap();
+        assert!(!a.header && a.irradiance);
+        assert!(parse_args(&["-ab".into(), "1".into(), "x.rad".into()]).is_err());
+    }
+}
