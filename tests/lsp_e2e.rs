@@ -775,3 +775,69 @@ fn a_burst_of_edits_ends_with_the_last_texts_diagnostics() {
     );
     client.shutdown();
 }
+
+/// (code, message) of each diagnostic `radc check --format json` reports for `path`.
+fn cli_said(path: &std::path::Path) -> Vec<(String, String)> {
+    let out = Command::new(env!("CARGO_BIN_EXE_radc"))
+        .args(["check", "--format", "json"])
+        .arg(path)
+        .output()
+        .expect("radc check runs");
+    let mut said: Vec<(String, String)> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| serde_json::from_str::<Value>(l).ok())
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or("").into(),
+                d["message"].as_str().unwrap_or("").into(),
+            )
+        })
+        .collect();
+    said.sort();
+    said
+}
+
+fn lsp_said(published: &Value) -> Vec<(String, String)> {
+    let mut said: Vec<(String, String)> = published["diagnostics"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|d| {
+                    (
+                        d["code"].as_str().unwrap_or("").into(),
+                        d["message"].as_str().unwrap_or("").into(),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    said.sort();
+    said
+}
+
+#[test]
+fn built_in_generators_expand_as_radc_check_expands_them() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let text = "void plastic paint\n0\n0\n5 .5 .5 .5 0 0\n\n!genbox paint box 1 1 1\n!genbox nothing b 1 1 1\n!genbox\n";
+    std::fs::write(&ws.path, text).expect("write scene");
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, uri, text);
+    let published = client.notification("textDocument/publishDiagnostics");
+    let said = lsp_said(&published);
+    assert_eq!(said, cli_said(&ws.path));
+    let codes: Vec<&str> = said.iter().map(|(c, _)| c.as_str()).collect();
+    assert!(
+        codes.contains(&"E0301") && !codes.contains(&"W0303"),
+        "{said:?}"
+    );
+    // The undefined modifier inside genbox's output is shown on the command line.
+    let e0301 = published["diagnostics"]
+        .as_array()
+        .and_then(|a| a.iter().find(|d| d["code"] == "E0301"))
+        .cloned()
+        .unwrap_or_default();
+    assert_eq!(e0301["range"]["start"]["line"], 6);
+    client.shutdown();
+}

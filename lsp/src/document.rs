@@ -102,6 +102,15 @@ impl<'a> Document<'a> {
         Uri::from_file_path(file.path(self.db)).unwrap_or_else(|| self.uri.clone())
     }
 
+    /// Whether `id` is one of the files of this document's scene (not text brought in
+    /// by a command or a function file).
+    pub fn is_scene_file(&self, id: radc_lang::FileId) -> bool {
+        match self.scene {
+            Some(set) => set.files(self.db).iter().any(|f| f.id(self.db) == id),
+            None => self.file.id(self.db) == id,
+        }
+    }
+
     /// The files read before this one in its `.rif` scene, in order.
     pub fn earlier_files(&self) -> Vec<SourceFile> {
         let Some(set) = self.scene else {

@@ -16,8 +16,21 @@ mod session;
 
 use tower_lsp_server::{LspService, Server};
 
+/// Generators evaluate calcomp curves recursively: the server runs on a thread with a
+/// deep stack, as `radc genworm` does (reserved, not committed, memory).
+const STACK: usize = 512 << 20;
+
 /// Serves the protocol over standard input and output until the client says `exit`.
 pub fn run_stdio() -> std::io::Result<()> {
+    std::thread::Builder::new()
+        .name("radc-lsp".into())
+        .stack_size(STACK)
+        .spawn(serve_stdio)?
+        .join()
+        .unwrap_or_else(|_| Err(std::io::Error::other("the server thread panicked")))
+}
+
+fn serve_stdio() -> std::io::Result<()> {
     let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()?;

@@ -35,7 +35,7 @@ impl Default for Session {
     fn default() -> Self {
         let config = Config::default();
         Session {
-            db: Database::new(Arc::new(SearchPath::new(config.raypath.clone()))),
+            db: Database::new(Arc::new(SearchPath::new(&config))),
             open: HashMap::new(),
             disk: HashMap::new(),
             scenes: HashMap::new(),
@@ -115,7 +115,7 @@ impl Session {
     /// Applies new settings; files on disk are looked up afresh.
     pub fn configure(&mut self, settings: &serde_json::Value) {
         self.config.update(settings);
-        let search = SearchPath::new(self.config.raypath.clone());
+        let search = SearchPath::new(&self.config);
         self.db.set_aux_files(Arc::new(search));
     }
 

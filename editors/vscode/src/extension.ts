@@ -17,6 +17,7 @@ function serverSettings(): object {
   return {
     radc: {
       inlayHints: { enabled: cfg.get<boolean>("inlayHints.enabled", true) },
+      generators: { enabled: cfg.get<boolean>("generators.enabled", true) },
       raypath: cfg.get<string[]>("raypath", []).length > 0 ? cfg.get<string[]>("raypath") : null,
     },
   };

@@ -18,6 +18,7 @@ pub use queries::{
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
+use crate::scene::Expansion;
 use crate::schema::FileKind;
 use crate::source::FileId;
 
@@ -50,10 +51,36 @@ pub struct FileSystem {
     pub generation: u64,
 }
 
-/// Answers whether an auxiliary file named by a scene exists, searched from the
-/// folder of the scene file at `scene_path` (then wherever the front end looks).
+/// The outside world as the checks see it, answered by the front end: auxiliary files
+/// named by a scene, searched from the folder of the scene file at `scene_path` (then
+/// wherever the front end looks), and `!` command lines. The optional methods mirror
+/// [`crate::scene::FileLookup`]'s; their defaults skip the checks that need them.
 pub trait AuxFiles: Send + Sync {
     fn exists(&self, name: &str, kind: FileKind, scene_path: &Path) -> bool;
+
+    /// The text of an auxiliary file, for the checks that look inside it.
+    fn read(&self, _name: &str, _kind: FileKind, _scene_path: &Path) -> Option<String> {
+        None
+    }
+
+    /// The first `max` bytes of an auxiliary file.
+    fn read_head(
+        &self,
+        _name: &str,
+        _kind: FileKind,
+        _scene_path: &Path,
+        _max: usize,
+    ) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// The output of a `!` command line (the text after `!`), or why there is none.
+    /// The default runs nothing.
+    fn expand(&self, _command: &str, _scene_path: &Path) -> Result<String, Expansion> {
+        Err(Expansion::NotExpanded {
+            reason: "radc does not run commands here".into(),
+        })
+    }
 }
 
 /// For front ends without a file system, and for tests.
