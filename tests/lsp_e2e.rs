@@ -841,3 +841,74 @@ fn built_in_generators_expand_as_radc_check_expands_them() {
     assert_eq!(e0301["range"]["start"]["line"], 6);
     client.shutdown();
 }
+
+fn corpus_scenes(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            corpus_scenes(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rad") {
+            out.push(p);
+        }
+    }
+}
+
+/// Every scene of the test corpora gets the same codes and messages from the server
+/// as from `radc check FILE`.
+#[test]
+fn the_server_says_what_radc_check_says_across_the_corpora() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    corpus_scenes(&root.join("tests/data/scenes"), &mut files);
+    corpus_scenes(&root.join("../shared/corpus/radiance"), &mut files);
+    files.sort();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    let mut compared = 0;
+    let mut mismatches = Vec::new();
+    for path in files {
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue; // not UTF-8: the editor would not hold the same text
+        };
+        let path = path.canonicalize().unwrap_or(path);
+        // A .rif beside the file changes what the server checks it with.
+        let has_rif = std::fs::read_dir(path.parent().unwrap_or(root))
+            .map(|d| {
+                d.flatten()
+                    .any(|e| e.path().extension().is_some_and(|x| x == "rif"))
+            })
+            .unwrap_or(false);
+        if has_rif {
+            continue;
+        }
+        let uri = format!("file://{}", path.display());
+        open(&mut client, &uri, &text);
+        let published = loop {
+            let p = client.notification("textDocument/publishDiagnostics");
+            if p["uri"] == uri.as_str() {
+                break p;
+            }
+        };
+        client.notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": uri}}),
+        );
+        compared += 1;
+        let (lsp, cli) = (lsp_said(&published), cli_said(&path));
+        if lsp != cli {
+            mismatches.push(format!("{}:\n  lsp {lsp:?}\n  cli {cli:?}", path.display()));
+        }
+    }
+    client.shutdown();
+    eprintln!("compared {compared} scenes");
+    assert!(compared > 50, "compared {compared}");
+    assert!(
+        mismatches.is_empty(),
+        "{} of {compared} differ:\n{}",
+        mismatches.len(),
+        mismatches.join("\n")
+    );
+}
