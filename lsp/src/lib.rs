@@ -4,13 +4,13 @@
 //! is the one place (besides the CLI) that looks at the disk: it answers whether
 //! auxiliary files exist. It never runs a `!` command.
 
+mod aux_files;
 mod config;
 mod diagnostics;
 mod document;
 mod framing;
 mod handlers;
 mod rif;
-mod search_path;
 mod server;
 mod session;
 

@@ -9,10 +9,10 @@ use std::sync::Arc;
 use radc_lang::db::{Database, SceneSet, SourceFile};
 use tower_lsp_server::ls_types::Uri;
 
+use crate::aux_files::DiskAuxFiles;
 use crate::config::Config;
 use crate::document::Document;
 use crate::rif;
-use crate::search_path::SearchPath;
 
 struct Open {
     file: SourceFile,
@@ -35,7 +35,7 @@ impl Default for Session {
     fn default() -> Self {
         let config = Config::default();
         Session {
-            db: Database::new(Arc::new(SearchPath::new(&config))),
+            db: Database::new(Arc::new(DiskAuxFiles::new(&config))),
             open: HashMap::new(),
             disk: HashMap::new(),
             scenes: HashMap::new(),
@@ -115,7 +115,7 @@ impl Session {
     /// Applies new settings; files on disk are looked up afresh.
     pub fn configure(&mut self, settings: &serde_json::Value) {
         self.config.update(settings);
-        let search = SearchPath::new(&self.config);
+        let search = DiskAuxFiles::new(&self.config);
         self.db.set_aux_files(Arc::new(search));
     }
 

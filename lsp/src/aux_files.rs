@@ -16,12 +16,12 @@ use crate::config::Config;
 /// Auxiliary files larger than this are not read for content checks (as in the CLI).
 const MAX_AUX_FILE: u64 = 64 << 20;
 
-pub struct SearchPath {
+pub struct DiskAuxFiles {
     raypath: Vec<PathBuf>,
     generators: bool,
 }
 
-impl SearchPath {
+impl DiskAuxFiles {
     /// `raypath` from the client's settings, or else the `RAYPATH` variable; whether
     /// built-in generators expand.
     pub fn new(config: &Config) -> Self {
@@ -30,7 +30,7 @@ impl SearchPath {
                 .map(|v| std::env::split_paths(&v).collect())
                 .unwrap_or_default()
         });
-        SearchPath {
+        DiskAuxFiles {
             raypath,
             generators: config.generators,
         }
@@ -51,7 +51,7 @@ impl SearchPath {
     }
 }
 
-impl AuxFiles for SearchPath {
+impl AuxFiles for DiskAuxFiles {
     fn exists(&self, name: &str, _kind: FileKind, scene_path: &Path) -> bool {
         self.find(name, scene_path).is_some()
     }
