@@ -7,8 +7,8 @@ usage: bench/lsp_latency.py [path/to/radc] [primitives] [edits]
 
 Measured Nov 2026 on the 2-core project machine, `cargo build --release`, full-text sync,
 times including this script's JSON encoding:
-  bench/lsp_latency.py target/release/radc 1000 30    open 3.0 ms, edit median 1.4 ms, worst 7.5 ms
-  bench/lsp_latency.py target/release/radc 10000 30   open 35.9 ms, edit median 34.8 ms, worst 76.2 ms
+  bench/lsp_latency.py target/release/radc 1000 30    open 3.3 ms, edit median 1.8 ms, worst 6.7 ms
+  bench/lsp_latency.py target/release/radc 10000 30   open 34.5 ms, edit median 26.3 ms, worst 57.1 ms
 """
 import json, subprocess, sys, time
 
