@@ -56,6 +56,10 @@ impl AuxFiles for DiskAuxFiles {
         self.find(name, scene_path).is_some()
     }
 
+    fn locate(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<PathBuf> {
+        self.find(name, scene_path)
+    }
+
     fn read(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<String> {
         let path = self.find(name, scene_path)?;
         if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {

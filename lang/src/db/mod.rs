@@ -58,6 +58,16 @@ pub struct FileSystem {
 pub trait AuxFiles: Send + Sync {
     fn exists(&self, name: &str, kind: FileKind, scene_path: &Path) -> bool;
 
+    /// Where an auxiliary file is, for editors to open it.
+    fn locate(
+        &self,
+        _name: &str,
+        _kind: FileKind,
+        _scene_path: &Path,
+    ) -> Option<std::path::PathBuf> {
+        None
+    }
+
     /// The text of an auxiliary file, for the checks that look inside it.
     fn read(&self, _name: &str, _kind: FileKind, _scene_path: &Path) -> Option<String> {
         None
