@@ -180,9 +180,13 @@ fn workspace() -> Workspace {
 }
 
 fn initialize(client: &mut Client, options: Value) -> Value {
+    initialize_with(client, options, json!({}))
+}
+
+fn initialize_with(client: &mut Client, options: Value, capabilities: Value) -> Value {
     let result = client.request(
         "initialize",
-        json!({"processId": null, "rootUri": null, "capabilities": {}, "initializationOptions": options}),
+        json!({"processId": null, "rootUri": null, "capabilities": capabilities, "initializationOptions": options}),
     );
     client.notify("initialized", json!({}));
     result
@@ -332,6 +336,18 @@ fn a_session_from_initialize_to_exit() {
         json!([{"uri": uri, "range": range(0, 13, 0, 16)}, {"uri": uri, "range": range(7, 0, 7, 3)}])
     );
 
+    // Rename rewrites the definition and the uses bound to it.
+    let mut params = at(uri, pos(UNTIDY, "red   sphere", 0, 1));
+    params["newName"] = json!("paint");
+    let rename = client.request("textDocument/rename", params);
+    assert_eq!(
+        rename,
+        json!({"changes": {uri: [
+            {"range": range(0, 13, 0, 16), "newText": "paint"},
+            {"range": range(7, 0, 7, 3), "newText": "paint"}
+        ]}})
+    );
+
     // Inlay hints name the reals.
     let hints = client.request(
         "textDocument/inlayHint",
@@ -452,7 +468,12 @@ fn inlay_hints_follow_the_setting() {
     let ws = workspace();
     let uri = ws.uri.as_str();
     let mut client = Client::start();
-    initialize(&mut client, json!({"inlayHints": {"enabled": false}}));
+    let refresh = json!({"workspace": {"inlayHint": {"refreshSupport": true}}});
+    initialize_with(
+        &mut client,
+        json!({"inlayHints": {"enabled": false}}),
+        refresh,
+    );
     open(&mut client, uri, TIDY);
     client.notification("textDocument/publishDiagnostics");
     let params = json!({"textDocument": {"uri": uri}, "range": range(0, 0, 9, 0)});
@@ -465,6 +486,11 @@ fn inlay_hints_follow_the_setting() {
         json!({"settings": {"radc": {"inlayHints": {"enabled": true}}}}),
     );
     client.notification("textDocument/publishDiagnostics");
+    // The client asked to be told to refresh its hints (a request, answered by the harness).
+    assert_eq!(
+        client.notification("workspace/inlayHint/refresh"),
+        Value::Null
+    );
     let hints = client.request("textDocument/inlayHint", params);
     assert_eq!(hints.as_array().map(Vec::len), Some(9));
     client.shutdown();
@@ -489,6 +515,12 @@ fn never_runs_commands_and_survives_nonsense() {
         .unwrap_or_default();
     assert!(codes.contains(&"W0303"), "{codes:?}");
     assert!(!marker.exists(), "the server ran a '!' command");
+
+    // A body that is not JSON is dropped; the server keeps serving.
+    client
+        .stdin
+        .write_all(b"Content-Length: 7\r\n\r\n{hello}")
+        .expect("write");
 
     // Positions past the end, documents never opened, formatting a broken file.
     for (method, params) in [
@@ -530,4 +562,353 @@ fn never_runs_commands_and_survives_nonsense() {
         Value::Null
     );
     client.shutdown();
+}
+
+fn codes(published: &Value) -> Vec<String> {
+    published["diagnostics"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|d| d["code"].as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+#[test]
+fn saves_and_raypath_settings_recheck_auxiliary_files() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let dir = ws.path.parent().expect("scene folder").to_path_buf();
+    let scene = |cal: &str| {
+        format!("void brightfunc b\n2 refl {cal}\n0\n0\n\nb sphere s\n0\n0\n4 0 0 0 1\n")
+    };
+    let mut client = Client::start();
+    initialize(&mut client, json!({"raypath": []}));
+
+    open(&mut client, uri, &scene("funcs.cal"));
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(codes(&published), ["E0305"]);
+    assert_eq!(
+        published["diagnostics"][0]["message"],
+        "file 'funcs.cal' not found"
+    );
+
+    // The file appears next to the scene; a save re-checks (without an edit).
+    std::fs::write(dir.join("funcs.cal"), "refl = 1;\n").expect("write cal");
+    client.notify(
+        "textDocument/didSave",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        Vec::<String>::new()
+    );
+
+    // A file found only along the configured RAYPATH.
+    let lib = dir.join("lib");
+    std::fs::create_dir(&lib).expect("lib folder");
+    std::fs::write(lib.join("other.cal"), "refl = 1;\n").expect("write cal");
+    change(&mut client, uri, 2, &scene("other.cal"));
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        ["E0305"]
+    );
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"radc": {"raypath": [lib.display().to_string()]}}}),
+    );
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        Vec::<String>::new()
+    );
+    client.shutdown();
+}
+
+#[test]
+fn a_rif_makes_its_files_one_scene() {
+    let ws = workspace();
+    let dir = ws.path.parent().expect("scene folder").to_path_buf();
+    let walls = "paint polygon wall\n0\n0\n9 0 0 0 1 0 0 1 1 0\n";
+    std::fs::write(
+        dir.join("basic.mat"),
+        "void plastic paint\n0\n0\n5 .5 .5 .5 0 0\n",
+    )
+    .expect("mat");
+    std::fs::write(dir.join("walls.rad"), walls).expect("walls");
+    std::fs::write(dir.join("alone.rad"), walls).expect("alone");
+    let walls_uri = format!("file://{}", dir.join("walls.rad").display());
+    let alone_uri = format!("file://{}", dir.join("alone.rad").display());
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+
+    // Without a rif, the material is undefined.
+    open(&mut client, &alone_uri, walls);
+    assert_eq!(
+        codes(&client.notification("textDocument/publishDiagnostics")),
+        ["E0301"]
+    );
+
+    std::fs::write(
+        dir.join("room.rif"),
+        "materials = basic.mat\nscene = walls.rad\n",
+    )
+    .expect("rif");
+    open(&mut client, &walls_uri, walls);
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(published["uri"], walls_uri.as_str());
+    assert_eq!(codes(&published), Vec::<String>::new());
+
+    // Navigation reaches into the rif's earlier files.
+    let mat_uri = format!(
+        "file://{}",
+        dir.join("basic.mat").canonicalize().expect("mat").display()
+    );
+    let definition = client.request(
+        "textDocument/definition",
+        at(&walls_uri, json!({"line": 0, "character": 2})),
+    );
+    assert_eq!(
+        definition,
+        json!({"uri": mat_uri, "range": range(0, 13, 0, 18)})
+    );
+    let hover = client.request(
+        "textDocument/hover",
+        at(&walls_uri, json!({"line": 0, "character": 2})),
+    );
+    let text = hover["contents"]["value"].as_str().unwrap_or_default();
+    assert!(
+        text.starts_with("**paint** — plastic (material), defined on line 1 of basic.mat"),
+        "{text}"
+    );
+    let mut params = at(&walls_uri, json!({"line": 0, "character": 2}));
+    params["context"] = json!({"includeDeclaration": true});
+    let references = client.request("textDocument/references", params);
+    assert_eq!(
+        references,
+        json!([{"uri": mat_uri, "range": range(0, 13, 0, 18)}, {"uri": walls_uri, "range": range(0, 0, 0, 5)}])
+    );
+    let completion = client.request(
+        "textDocument/completion",
+        at(&walls_uri, json!({"line": 4, "character": 0})),
+    );
+    let labels: Vec<&str> = completion
+        .as_array()
+        .map(|a| a.iter().filter_map(|i| i["label"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(labels, ["void", "paint"]);
+
+    // The material file changes on disk: a watched-file event re-checks.
+    std::fs::write(
+        dir.join("basic.mat"),
+        "void plastic other\n0\n0\n5 .5 .5 .5 0 0\n",
+    )
+    .expect("mat");
+    client.notify("workspace/didChangeWatchedFiles", json!({"changes": []}));
+    let mut walls_codes = None;
+    for _ in 0..2 {
+        let published = client.notification("textDocument/publishDiagnostics");
+        if published["uri"] == walls_uri.as_str() {
+            walls_codes = Some(codes(&published));
+        }
+    }
+    assert_eq!(walls_codes, Some(vec!["E0301".to_string()]));
+    client.shutdown();
+}
+
+#[test]
+fn calcomp_and_rif_documents_are_not_checked_as_scenes() {
+    let ws = workspace();
+    let dir = ws.path.parent().expect("folder").to_path_buf();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    for name in ["f.cal", "p.rif"] {
+        let uri = format!("file://{}", dir.join(name).display());
+        open(&mut client, &uri, "x = 1;\nscene = a.rad\n");
+        let hover = client.request(
+            "textDocument/hover",
+            at(&uri, json!({"line": 0, "character": 0})),
+        );
+        assert_eq!(hover, Value::Null);
+    }
+    // Publishing nothing for them: the next diagnostics are the scene's.
+    open(&mut client, &ws.uri, TIDY);
+    assert_eq!(
+        client.notification("textDocument/publishDiagnostics")["uri"],
+        ws.uri.as_str()
+    );
+    client.shutdown();
+}
+
+#[test]
+fn a_burst_of_edits_ends_with_the_last_texts_diagnostics() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, uri, TIDY);
+    client.notification("textDocument/publishDiagnostics");
+    // Versions 2..=40 alternate between broken and fixed; the last one is broken.
+    for version in 2..=40 {
+        let text = if version % 2 == 0 { BROKEN } else { TIDY };
+        change(&mut client, uri, version, text);
+    }
+    let last = loop {
+        let published = client.notification("textDocument/publishDiagnostics");
+        if published["version"] == 40 {
+            break published;
+        }
+    };
+    assert_eq!(codes(&last), ["E0202"]);
+    // Nothing older arrives after it.
+    let hover = client.request(
+        "textDocument/hover",
+        at(uri, json!({"line": 5, "character": 6})),
+    );
+    assert_eq!(hover["range"], range(5, 4, 5, 10));
+    assert!(
+        client
+            .unread
+            .iter()
+            .all(|m| m["params"]["version"] == 40
+                || m["method"] != "textDocument/publishDiagnostics")
+    );
+    client.shutdown();
+}
+
+/// (code, message) of each diagnostic `radc check --format json` reports for `path`.
+fn cli_said(path: &std::path::Path) -> Vec<(String, String)> {
+    let out = Command::new(env!("CARGO_BIN_EXE_radc"))
+        .args(["check", "--format", "json"])
+        .arg(path)
+        .output()
+        .expect("radc check runs");
+    let mut said: Vec<(String, String)> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| serde_json::from_str::<Value>(l).ok())
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or("").into(),
+                d["message"].as_str().unwrap_or("").into(),
+            )
+        })
+        .collect();
+    said.sort();
+    said
+}
+
+fn lsp_said(published: &Value) -> Vec<(String, String)> {
+    let mut said: Vec<(String, String)> = published["diagnostics"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|d| {
+                    (
+                        d["code"].as_str().unwrap_or("").into(),
+                        d["message"].as_str().unwrap_or("").into(),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    said.sort();
+    said
+}
+
+#[test]
+fn built_in_generators_expand_as_radc_check_expands_them() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let text = "void plastic paint\n0\n0\n5 .5 .5 .5 0 0\n\n!genbox paint box 1 1 1\n!genbox nothing b 1 1 1\n!genbox\n";
+    std::fs::write(&ws.path, text).expect("write scene");
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, uri, text);
+    let published = client.notification("textDocument/publishDiagnostics");
+    let said = lsp_said(&published);
+    assert_eq!(said, cli_said(&ws.path));
+    let codes: Vec<&str> = said.iter().map(|(c, _)| c.as_str()).collect();
+    assert!(
+        codes.contains(&"E0301") && !codes.contains(&"W0303"),
+        "{said:?}"
+    );
+    // The undefined modifier inside genbox's output is shown on the command line.
+    let e0301 = published["diagnostics"]
+        .as_array()
+        .and_then(|a| a.iter().find(|d| d["code"] == "E0301"))
+        .cloned()
+        .unwrap_or_default();
+    assert_eq!(e0301["range"]["start"]["line"], 6);
+    client.shutdown();
+}
+
+fn corpus_scenes(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            corpus_scenes(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rad") {
+            out.push(p);
+        }
+    }
+}
+
+/// Every scene of the test corpora gets the same codes and messages from the server
+/// as from `radc check FILE`.
+#[test]
+fn the_server_says_what_radc_check_says_across_the_corpora() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    corpus_scenes(&root.join("tests/data/scenes"), &mut files);
+    corpus_scenes(&root.join("../shared/corpus/radiance"), &mut files);
+    files.sort();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    let mut compared = 0;
+    let mut mismatches = Vec::new();
+    for path in files {
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue; // not UTF-8: the editor would not hold the same text
+        };
+        let path = path.canonicalize().unwrap_or(path);
+        // A .rif beside the file changes what the server checks it with.
+        let has_rif = std::fs::read_dir(path.parent().unwrap_or(root))
+            .map(|d| {
+                d.flatten()
+                    .any(|e| e.path().extension().is_some_and(|x| x == "rif"))
+            })
+            .unwrap_or(false);
+        if has_rif {
+            continue;
+        }
+        let uri = format!("file://{}", path.display());
+        open(&mut client, &uri, &text);
+        let published = loop {
+            let p = client.notification("textDocument/publishDiagnostics");
+            if p["uri"] == uri.as_str() {
+                break p;
+            }
+        };
+        client.notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": uri}}),
+        );
+        compared += 1;
+        let (lsp, cli) = (lsp_said(&published), cli_said(&path));
+        if lsp != cli {
+            mismatches.push(format!("{}:\n  lsp {lsp:?}\n  cli {cli:?}", path.display()));
+        }
+    }
+    client.shutdown();
+    eprintln!("compared {compared} scenes");
+    assert!(compared > 50, "compared {compared}");
+    assert!(
+        mismatches.is_empty(),
+        "{} of {compared} differ:\n{}",
+        mismatches.len(),
+        mismatches.join("\n")
+    );
 }

@@ -2,8 +2,12 @@
 //! `workspace/didChangeConfiguration` (either bare or under a `radc` key):
 //!
 //! ```json
-//! { "inlayHints": { "enabled": true }, "raypath": ["/usr/local/lib/ray"] }
+//! { "inlayHints": { "enabled": true }, "raypath": ["/usr/local/lib/ray"],
+//!   "generators": { "enabled": true } }
 //! ```
+//!
+//! `generators` lets `!` lines that call radc's built-in generators (genbox, xform,
+//! ...) expand in-process, as `radc check` does; no process is ever started.
 //!
 //! `raypath` may also be one string separated like the `RAYPATH` variable. Unknown
 //! keys and wrong types are ignored: a bad setting must not stop the server.
@@ -18,6 +22,8 @@ pub struct Config {
     /// Folders searched for auxiliary files after the scene's own; `None` means the
     /// server's `RAYPATH` environment variable.
     pub raypath: Option<Vec<PathBuf>>,
+    /// Whether `!` lines naming a built-in generator are expanded (in-process).
+    pub generators: bool,
 }
 
 impl Default for Config {
@@ -25,6 +31,7 @@ impl Default for Config {
         Config {
             inlay_hints: true,
             raypath: None,
+            generators: true,
         }
     }
 }
@@ -37,6 +44,11 @@ impl Config {
         let enabled = hints.and_then(|h| h.get("enabled").or(Some(h)));
         if let Some(on) = enabled.and_then(Value::as_bool) {
             self.inlay_hints = on;
+        }
+        let generators = value.get("generators");
+        let enabled = generators.and_then(|g| g.get("enabled").or(Some(g)));
+        if let Some(on) = enabled.and_then(Value::as_bool) {
+            self.generators = on;
         }
         match value.get("raypath") {
             Some(Value::String(s)) if s.is_empty() => self.raypath = None,
@@ -70,5 +82,8 @@ mod tests {
         assert_eq!(c.raypath.as_ref().map(Vec::len), Some(2));
         c.update(&json!(null));
         assert!(c.inlay_hints);
+        assert!(c.generators);
+        c.update(&json!({"generators": {"enabled": false}}));
+        assert!(!c.generators);
     }
 }

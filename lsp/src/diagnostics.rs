@@ -1,6 +1,8 @@
 //! The one place `lang` diagnostics become LSP diagnostics. Codes and messages are
 //! kept word for word (the editor says what `radc check` says); the hint and the
-//! secondary labels become related information.
+//! secondary labels become related information. A diagnostic inside text the editor
+//! does not show (a generator's output, a function file) is shown where this document
+//! brought that text in: at its label here ("in the output of this command").
 
 use radc_lang::{Diagnostic, Severity};
 use tower_lsp_server::ls_types::{
@@ -9,9 +11,19 @@ use tower_lsp_server::ls_types::{
 
 use crate::document::Document;
 
-pub fn to_lsp(doc: &Document<'_>, d: &Diagnostic) -> lsp::Diagnostic {
-    let range = doc.range(d.span);
-    let here = |message: String, range| DiagnosticRelatedInformation {
+/// `None` for diagnostics of the other files of a `.rif` scene (they are shown in
+/// those files).
+pub fn to_lsp(doc: &Document<'_>, d: &Diagnostic) -> Option<lsp::Diagnostic> {
+    let here = doc.file.id(doc.db);
+    let span = if d.span.file == here {
+        d.span
+    } else if doc.is_scene_file(d.span.file) {
+        return None;
+    } else {
+        d.labels.iter().find(|l| l.span.file == here)?.span
+    };
+    let range = doc.range(span);
+    let info = |message: String, range| DiagnosticRelatedInformation {
         location: Location {
             uri: doc.uri.clone(),
             range,
@@ -21,13 +33,13 @@ pub fn to_lsp(doc: &Document<'_>, d: &Diagnostic) -> lsp::Diagnostic {
     let mut related: Vec<_> = d
         .labels
         .iter()
-        .filter(|l| l.span.file == d.span.file)
-        .map(|l| here(l.message.clone(), doc.range(l.span)))
+        .filter(|l| l.span.file == here)
+        .map(|l| info(l.message.clone(), doc.range(l.span)))
         .collect();
     if let Some(hint) = &d.hint {
-        related.push(here(format!("hint: {hint}"), range));
+        related.push(info(format!("hint: {hint}"), range));
     }
-    lsp::Diagnostic {
+    Some(lsp::Diagnostic {
         range,
         severity: Some(match d.severity {
             Severity::Error => DiagnosticSeverity::ERROR,
@@ -38,14 +50,15 @@ pub fn to_lsp(doc: &Document<'_>, d: &Diagnostic) -> lsp::Diagnostic {
         message: d.message.clone(),
         related_information: (!related.is_empty()).then_some(related),
         ..lsp::Diagnostic::default()
-    }
+    })
 }
 
-/// Every diagnostic of the document, as `radc check FILE` reports them.
+/// Every diagnostic of the document, as `radc check FILE` reports them (or, for a
+/// document a `.rif` lists, `radc check` of all the rif's files, shown for this one).
 pub fn for_document(doc: &Document<'_>) -> Vec<lsp::Diagnostic> {
-    radc_lang::db::check_scene(doc.db, doc.file)
-        .iter()
-        .filter(|d| d.span.file == doc.file.id(doc.db))
-        .map(|d| to_lsp(doc, d))
-        .collect()
+    let all = match doc.scene {
+        Some(set) => radc_lang::db::check_scene_set(doc.db, set),
+        None => radc_lang::db::check_scene(doc.db, doc.file),
+    };
+    all.iter().filter_map(|d| to_lsp(doc, d)).collect()
 }

@@ -1,8 +1,8 @@
 //! One open document as the handlers see it: its text and queries from the database,
 //! and the conversions between LSP positions (line, UTF-16 column) and byte offsets.
 
-use radc_lang::db::{self, Database, ParsedScene, SourceFile};
-use radc_lang::scene::scope::ModifierScope;
+use radc_lang::db::{self, Database, ParsedScene, SceneSet, SourceFile};
+use radc_lang::scene::scope::{Definition, ModifierScope};
 use radc_lang::scene::syntax::{Item, Primitive};
 use radc_lang::schema::ArgSide;
 use radc_lang::{LineIndex, Span};
@@ -12,6 +12,15 @@ pub struct Document<'a> {
     pub db: &'a Database,
     pub file: SourceFile,
     pub uri: &'a Uri,
+    /// The files read with this one as a scene (from a `.rif`), if any.
+    pub scene: Option<SceneSet>,
+}
+
+/// A definition and the file it is in.
+#[derive(Clone, Copy, Debug)]
+pub struct Target<'a> {
+    pub file: SourceFile,
+    pub def: &'a Definition,
 }
 
 /// What a byte offset points at inside a primitive.
@@ -64,15 +73,78 @@ impl<'a> Document<'a> {
     }
 
     pub fn position(&self, offset: usize) -> Position {
-        let (line, character) = self.lines().line_utf16(self.text(), offset);
-        Position { line, character }
+        self.position_in(self.file, offset)
     }
 
     pub fn range(&self, span: Span) -> Range {
+        self.range_in(self.file, span)
+    }
+
+    /// A position in another file of the database (a file of the same scene).
+    pub fn position_in(&self, file: SourceFile, offset: usize) -> Position {
+        let lines = db::line_index(self.db, file);
+        let (line, character) = lines.line_utf16(file.text(self.db), offset);
+        Position { line, character }
+    }
+
+    pub fn range_in(&self, file: SourceFile, span: Span) -> Range {
         Range {
-            start: self.position(span.start as usize),
-            end: self.position(span.end as usize),
+            start: self.position_in(file, span.start as usize),
+            end: self.position_in(file, span.end as usize),
         }
+    }
+
+    /// The URI of a file of this document's scene.
+    pub fn uri_of(&self, file: SourceFile) -> Uri {
+        if file == self.file {
+            return self.uri.clone();
+        }
+        Uri::from_file_path(file.path(self.db)).unwrap_or_else(|| self.uri.clone())
+    }
+
+    /// Whether `id` is one of the files of this document's scene (not text brought in
+    /// by a command or a function file).
+    pub fn is_scene_file(&self, id: radc_lang::FileId) -> bool {
+        match self.scene {
+            Some(set) => set.files(self.db).iter().any(|f| f.id(self.db) == id),
+            None => self.file.id(self.db) == id,
+        }
+    }
+
+    /// The files read before this one in its `.rif` scene, in order.
+    pub fn earlier_files(&self) -> Vec<SourceFile> {
+        let Some(set) = self.scene else {
+            return Vec::new();
+        };
+        set.files(self.db)
+            .iter()
+            .take_while(|f| **f != self.file)
+            .copied()
+            .collect()
+    }
+
+    /// The definition the word at `offset` names or refers to, and that word's span:
+    /// in this file, or else (for a modifier this file does not define before the
+    /// use) the last definition in the earlier files of its scene.
+    pub fn target_at(&self, offset: usize) -> Option<(Span, Target<'a>)> {
+        let scope = self.scope();
+        if let Some((span, def)) = scope.symbol_at(offset) {
+            let target = Target {
+                file: self.file,
+                def,
+            };
+            return Some((span, target));
+        }
+        let r = scope.reference_at(offset)?;
+        Some((r.span, self.earlier_definition(&r.name)?))
+    }
+
+    /// The last definition of modifier `name` in the files read before this one.
+    pub fn earlier_definition(&self, name: &str) -> Option<Target<'a>> {
+        self.earlier_files().into_iter().rev().find_map(|file| {
+            let def = db::modifier_scope(self.db, file).last_modifier(name)?;
+            Some(Target { file, def })
+        })
     }
 
     /// The whole text, for edits that replace it.
@@ -125,6 +197,7 @@ pub fn with_document<T>(text: &str, f: impl FnOnce(&Document<'_>) -> T) -> T {
         db: &db,
         file,
         uri: &uri,
+        scene: None,
     })
 }
 

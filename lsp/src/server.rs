@@ -9,6 +9,7 @@
 //! handler that panics (a bug) answers "nothing" instead of taking the server down.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use tower_lsp_server::jsonrpc::Result;
@@ -24,6 +25,8 @@ pub struct Backend {
     client: Client,
     session: Mutex<Session>,
     publishing: tokio::sync::Mutex<()>,
+    /// Whether the client asks for `workspace/inlayHint/refresh` after a settings change.
+    refresh_inlay_hints: AtomicBool,
 }
 
 impl Backend {
@@ -32,6 +35,7 @@ impl Backend {
             client,
             session: Mutex::new(Session::default()),
             publishing: tokio::sync::Mutex::new(()),
+            refresh_inlay_hints: AtomicBool::new(false),
         }
     }
 
@@ -39,9 +43,13 @@ impl Backend {
         self.session.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// Runs a handler on one open document; `None` if it is not open or the handler
+    /// Runs a handler on one open scene document; `None` if it is not open, is not a
+    /// scene (calcomp and rad input files have no server support yet), or the handler
     /// panicked.
     fn read<T>(&self, uri: &Uri, f: impl FnOnce(&Document<'_>, &Config) -> Option<T>) -> Option<T> {
+        if !is_scene(uri) {
+            return None;
+        }
         let session = self.session();
         let doc = session.document(uri)?;
         catch_unwind(AssertUnwindSafe(|| f(&doc, &session.config)))
@@ -56,14 +64,32 @@ impl Backend {
 
     async fn publish(&self, uri: Uri) {
         let _order = self.publishing.lock().await;
-        let found = self.read(&uri, |doc, _| Some(crate::diagnostics::for_document(doc)));
-        let version = self.session().version(&uri);
-        if let Some(diagnostics) = found {
+        // Diagnostics and the version they belong to, read under one lock.
+        let found = {
+            let session = self.session();
+            let version = session.version(&uri);
+            let diagnostics = session
+                .document(&uri)
+                .filter(|_| is_scene(&uri))
+                .and_then(|doc| {
+                    catch_unwind(AssertUnwindSafe(|| crate::diagnostics::for_document(&doc))).ok()
+                });
+            diagnostics.map(|d| (d, version))
+        };
+        if let Some((diagnostics, version)) = found {
             self.client
                 .publish_diagnostics(uri, diagnostics, version)
                 .await;
         }
     }
+}
+
+/// Whether a document is a scene, by its extension (`.cal` and `.rif` are not;
+/// anything else, including untitled documents, is taken as one).
+fn is_scene(uri: &Uri) -> bool {
+    let path = uri.as_str().rsplit('/').next().unwrap_or("");
+    let ext = path.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+    !matches!(ext.as_deref(), Some("cal" | "rif"))
 }
 
 fn capabilities() -> ServerCapabilities {
@@ -79,9 +105,15 @@ fn capabilities() -> ServerCapabilities {
         hover_provider: Some(HoverProviderCapability::Simple(true)),
         definition_provider: Some(OneOf::Left(true)),
         references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Left(true)),
+        document_highlight_provider: Some(OneOf::Left(true)),
         document_symbol_provider: Some(OneOf::Left(true)),
         completion_provider: Some(CompletionOptions::default()),
         inlay_hint_provider: Some(OneOf::Left(true)),
+        signature_help_provider: Some(SignatureHelpOptions {
+            trigger_characters: Some(vec![" ".into()]),
+            ..SignatureHelpOptions::default()
+        }),
         document_formatting_provider: Some(OneOf::Left(true)),
         color_provider: Some(ColorProviderCapability::Simple(true)),
         ..ServerCapabilities::default()
@@ -90,6 +122,14 @@ fn capabilities() -> ServerCapabilities {
 
 impl LanguageServer for Backend {
     async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        let refresh = params
+            .capabilities
+            .workspace
+            .as_ref()
+            .and_then(|w| w.inlay_hint.as_ref())
+            .and_then(|i| i.refresh_support);
+        self.refresh_inlay_hints
+            .store(refresh == Some(true), Ordering::Relaxed);
         if let Some(options) = &params.initialization_options {
             self.write(|s| s.configure(options));
         }
@@ -145,6 +185,10 @@ impl LanguageServer for Backend {
         for uri in uris {
             self.publish(uri).await;
         }
+        if self.refresh_inlay_hints.load(Ordering::Relaxed) {
+            // The answer carries nothing; a client that fails it just keeps old hints.
+            let _ = self.client.inlay_hint_refresh().await;
+        }
     }
 
     async fn did_change_watched_files(&self, _: DidChangeWatchedFilesParams) {
@@ -180,6 +224,23 @@ impl LanguageServer for Backend {
         }))
     }
 
+    async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
+        let p = params.text_document_position;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::rename::rename(doc, p.position, &params.new_name)
+        }))
+    }
+
+    async fn document_highlight(
+        &self,
+        params: DocumentHighlightParams,
+    ) -> Result<Option<Vec<DocumentHighlight>>> {
+        let p = params.text_document_position_params;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::highlights::highlights(doc, p.position)
+        }))
+    }
+
     async fn document_symbol(
         &self,
         params: DocumentSymbolParams,
@@ -195,6 +256,13 @@ impl LanguageServer for Backend {
         let p = params.text_document_position;
         Ok(self.read(&p.text_document.uri, |doc, _| {
             handlers::completion::completion(doc, p.position).map(CompletionResponse::Array)
+        }))
+    }
+
+    async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
+        let p = params.text_document_position_params;
+        Ok(self.read(&p.text_document.uri, |doc, _| {
+            handlers::signature_help::signature_help(doc, p.position)
         }))
     }
 

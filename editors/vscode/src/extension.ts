@@ -17,6 +17,7 @@ function serverSettings(): object {
   return {
     radc: {
       inlayHints: { enabled: cfg.get<boolean>("inlayHints.enabled", true) },
+      generators: { enabled: cfg.get<boolean>("generators.enabled", true) },
       raypath: cfg.get<string[]>("raypath", []).length > 0 ? cfg.get<string[]>("raypath") : null,
     },
   };
@@ -36,9 +37,10 @@ function createClient(): LanguageClient {
     ],
     initializationOptions: serverSettings(),
     synchronize: {
-      // Function, data and picture files appearing or vanishing change diagnostics.
+      // Scene files of a .rif, and the function, data and picture files scenes name:
+      // their changes on disk change diagnostics.
       fileEvents: vscode.workspace.createFileSystemWatcher(
-        "**/*.{cal,dat,hdr,pic,oct,rtm,xml,fnt}"
+        "**/*.{rif,rad,mat,cal,dat,hdr,pic,oct,rtm,xml,fnt}"
       ),
     },
   };

@@ -11,12 +11,14 @@
 mod queries;
 
 pub use queries::{
-    ParsedScene, check_scene, format_scene, line_index, modifier_scope, parse_scene,
+    ParsedScene, check_scene, check_scene_set, format_scene, line_index, modifier_scope,
+    parse_scene,
 };
 
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
+use crate::scene::Expansion;
 use crate::schema::FileKind;
 use crate::source::FileId;
 
@@ -34,6 +36,13 @@ pub struct SourceFile {
     pub warn_unused: bool,
 }
 
+/// Files read in order as one scene, as `oconv` reads its arguments (materials first,
+/// then the geometry that uses them).
+#[salsa::input(debug)]
+pub struct SceneSet {
+    pub files: Vec<SourceFile>,
+}
+
 /// What the database knows of the file system: only a generation number, bumped by
 /// the front end whenever files on disk may have appeared or vanished.
 #[salsa::input(debug, singleton)]
@@ -42,10 +51,46 @@ pub struct FileSystem {
     pub generation: u64,
 }
 
-/// Answers whether an auxiliary file named by a scene exists, searched from the
-/// folder of the scene file at `scene_path` (then wherever the front end looks).
+/// The outside world as the checks see it, answered by the front end: auxiliary files
+/// named by a scene, searched from the folder of the scene file at `scene_path` (then
+/// wherever the front end looks), and `!` command lines. The optional methods mirror
+/// [`crate::scene::FileLookup`]'s; their defaults skip the checks that need them.
 pub trait AuxFiles: Send + Sync {
     fn exists(&self, name: &str, kind: FileKind, scene_path: &Path) -> bool;
+
+    /// Where an auxiliary file is, for editors to open it.
+    fn locate(
+        &self,
+        _name: &str,
+        _kind: FileKind,
+        _scene_path: &Path,
+    ) -> Option<std::path::PathBuf> {
+        None
+    }
+
+    /// The text of an auxiliary file, for the checks that look inside it.
+    fn read(&self, _name: &str, _kind: FileKind, _scene_path: &Path) -> Option<String> {
+        None
+    }
+
+    /// The first `max` bytes of an auxiliary file.
+    fn read_head(
+        &self,
+        _name: &str,
+        _kind: FileKind,
+        _scene_path: &Path,
+        _max: usize,
+    ) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// The output of a `!` command line (the text after `!`), or why there is none.
+    /// The default runs nothing.
+    fn expand(&self, _command: &str, _scene_path: &Path) -> Result<String, Expansion> {
+        Err(Expansion::NotExpanded {
+            reason: "radc does not run commands here".into(),
+        })
+    }
 }
 
 /// For front ends without a file system, and for tests.
@@ -124,6 +169,19 @@ impl Database {
             id
         };
         SourceFile::new(self, id, path, text.into(), warn_unused)
+    }
+
+    /// Groups files to be checked together, in order.
+    pub fn scene_set(&mut self, files: Vec<SourceFile>) -> SceneSet {
+        SceneSet::new(self, files)
+    }
+
+    /// Changes which files a scene set holds (only if they differ: no needless revision).
+    pub fn set_scene_files(&mut self, set: SceneSet, files: Vec<SourceFile>) {
+        use salsa::Setter;
+        if *set.files(self) != files {
+            set.set_files(self).to(files);
+        }
     }
 
     /// Replaces a file's text (a new revision: dependent queries re-run on demand).

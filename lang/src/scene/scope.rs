@@ -120,6 +120,20 @@ impl ModifierScope {
         Some((r.span, self.definitions.get(r.target?)?))
     }
 
+    /// The modifier reference at byte `offset`, resolved or not.
+    pub fn reference_at(&self, offset: usize) -> Option<&Reference> {
+        let hit = |s: &Span| s.start as usize <= offset && offset <= s.end as usize;
+        self.references.iter().find(|r| hit(&r.span))
+    }
+
+    /// The last modifier definition called `name` (what a later file sees).
+    pub fn last_modifier(&self, name: &str) -> Option<&Definition> {
+        self.definitions
+            .iter()
+            .rev()
+            .find(|d| d.is_modifier && d.name == name)
+    }
+
     /// The spans of every word naming `def` (its own name first), for references
     /// and highlighting.
     pub fn uses_of(&self, def: &Definition) -> Vec<Span> {

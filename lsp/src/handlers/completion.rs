@@ -3,13 +3,14 @@
 //! goes. Where a word goes is read from the line: a statement is
 //! `modifier type name` at the start of a line, outside any primitive's arguments.
 
-use radc_lang::schema::{self, PRIMITIVE_TYPES, PrimitiveType};
+use radc_lang::scene::scope::Definition;
+use radc_lang::schema::{self, ArgSide, PRIMITIVE_TYPES, PrimitiveType, StringKind};
 use tower_lsp_server::ls_types::{
     CompletionItem, CompletionItemKind, CompletionTextEdit, Documentation, InsertTextFormat,
     MarkupContent, MarkupKind, Position, Range, TextEdit,
 };
 
-use crate::document::Document;
+use crate::document::{Document, Part};
 
 #[derive(Debug, PartialEq)]
 enum Slot {
@@ -41,6 +42,12 @@ pub fn completion(doc: &Document<'_>, pos: Position) -> Option<Vec<CompletionIte
 /// Which word of a statement the word starting at `word_start` would be, if the
 /// line holds the start of a statement.
 fn slot(doc: &Document<'_>, word_start: usize) -> Option<Slot> {
+    if let Some((p, Part::Arg(ArgSide::Strings, i), _)) = doc.locate(word_start) {
+        // Mixtures, antimatter, illum's alternate material: strings naming modifiers.
+        let ty = schema::lookup(&p.kind.text)?;
+        let kind = ty.strings.arg_at(i).map(|(a, _)| a.kind);
+        return (kind == Some(StringKind::Modifier)).then_some(Slot::Modifier);
+    }
     let text = doc.text();
     let line_start = text.get(..word_start)?.rfind('\n').map_or(0, |i| i + 1);
     let inside_earlier_item = doc.parsed().syntax.items.iter().any(|item| {
@@ -86,8 +93,18 @@ fn type_item(t: &PrimitiveType, replace: Range) -> CompletionItem {
 }
 
 fn modifiers(doc: &Document<'_>, word_start: usize, replace: Range) -> Vec<CompletionItem> {
-    let visible = doc.scope().visible_at(word_start);
-    let named = visible.into_iter().map(|d| {
+    let local = doc.scope().visible_at(word_start);
+    // Modifiers of the earlier files of a `.rif` scene, unless redefined here.
+    let mut earlier: Vec<&Definition> = Vec::new();
+    for file in doc.earlier_files() {
+        let scope = radc_lang::db::modifier_scope(doc.db, file);
+        for d in scope.visible_at(usize::MAX) {
+            earlier.retain(|e| e.name != d.name);
+            earlier.push(d);
+        }
+    }
+    earlier.retain(|e| local.iter().all(|l| l.name != e.name));
+    let named = earlier.into_iter().chain(local).map(|d| {
         let category = schema::lookup(&d.type_name).map_or("unknown type", |t| t.category.as_str());
         (d.name.clone(), format!("{} ({category})", d.type_name))
     });
@@ -143,5 +160,15 @@ mod tests {
         assert_eq!(types.len(), PRIMITIVE_TYPES.len());
         assert_eq!(labels(&text, 3, 2), None, "inside a real argument list");
         assert_eq!(labels("# comment ", 0, 10), None);
+    }
+
+    #[test]
+    fn modifiers_in_string_arguments_that_name_modifiers() {
+        let text = format!("{MATERIALS}\nvoid mixfunc mix\n4 a b f .\n0\n0\n");
+        // On `b`, the background modifier.
+        assert_eq!(
+            labels(&text, 11, 5),
+            Some(vec!["void".into(), "a".into(), "b".into()])
+        );
     }
 }

@@ -1,20 +1,19 @@
 //! `textDocument/hover`: a modifier's definition, a type's documentation and argument
 //! layout, or what one argument means, all from the schema.
 
-use radc_lang::scene::scope::Definition;
 use radc_lang::scene::syntax::Primitive;
 use radc_lang::schema::{self, ArgList, ArgSide, PrimitiveType};
 use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
 
-use crate::document::{Document, Part};
+use crate::document::{Document, Part, Target};
 
 /// Definitions longer than this are cut in hover text.
 const MAX_DEFINITION_LINES: usize = 12;
 
 pub fn hover(doc: &Document<'_>, pos: Position) -> Option<Hover> {
     let offset = doc.offset(pos);
-    let (text, span) = match doc.scope().symbol_at(offset) {
-        Some((span, def)) => (definition(doc, def), span),
+    let (text, span) = match doc.target_at(offset) {
+        Some((span, target)) => (definition(doc, target), span),
         None => {
             let (p, part, span) = doc.locate(offset)?;
             (part_text(p, part)?, span)
@@ -29,17 +28,26 @@ pub fn hover(doc: &Document<'_>, pos: Position) -> Option<Hover> {
     })
 }
 
-fn definition(doc: &Document<'_>, def: &Definition) -> String {
+fn definition(doc: &Document<'_>, target: Target<'_>) -> String {
+    let def = target.def;
     let ty = schema::lookup(&def.type_name);
     let what = ty.map_or("unknown type", |t| t.category.as_str());
-    let source = doc.text().get(def.span.range()).unwrap_or("");
+    let text = target.file.text(doc.db);
+    let source = text.get(def.span.range()).unwrap_or("");
     let mut lines: Vec<&str> = source.lines().take(MAX_DEFINITION_LINES).collect();
     if source.lines().count() > MAX_DEFINITION_LINES {
         lines.push("...");
     }
-    let line = doc.position(def.span.start as usize).line + 1;
+    let line = doc.position_in(target.file, def.span.start as usize).line + 1;
+    let place = if target.file == doc.file {
+        format!("line {line}")
+    } else {
+        let path = target.file.path(doc.db);
+        let name = path.rsplit(['/', '\\']).next().unwrap_or(path);
+        format!("line {line} of {name}")
+    };
     format!(
-        "**{}** — {} ({what}), defined on line {line}\n\n```radiance\n{}\n```",
+        "**{}** — {} ({what}), defined on {place}\n\n```radiance\n{}\n```",
         def.name,
         def.type_name,
         lines.join("\n")

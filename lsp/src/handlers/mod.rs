@@ -6,9 +6,12 @@ pub mod colors;
 pub mod completion;
 pub mod definition;
 pub mod formatting;
+pub mod highlights;
 pub mod hover;
 pub mod inlay_hints;
 pub mod references;
+pub mod rename;
+pub mod signature_help;
 pub mod symbols;
 
 #[cfg(test)]
@@ -52,6 +55,9 @@ mod properties {
                 let _ = hover::hover(doc, pos);
                 let _ = definition::definition(doc, pos);
                 let _ = references::references(doc, pos, true);
+                let _ = rename::rename(doc, pos, "n");
+                let _ = highlights::highlights(doc, pos);
+                let _ = signature_help::signature_help(doc, pos);
                 let _ = completion::completion(doc, pos);
                 let _ = inlay_hints::inlay_hints(doc, range);
                 let _ = symbols::symbols(doc);

@@ -1,0 +1,156 @@
+//! The server's answers about the outside world, as `radc check` gives them: where
+//! auxiliary files are (Radiance's `getpath` with RAYPATH, plus the scene's own
+//! folder: an absolute name as it is; otherwise the scene's folder, the current folder,
+//! then each RAYPATH folder), and the output of `!` lines that run one of radc's
+//! built-in generators (in-process, pure). Any other command is never run.
+
+use std::path::{Path, PathBuf};
+
+use radc_generators::{GenError, Host};
+use radc_lang::db::AuxFiles;
+use radc_lang::scene::Expansion;
+use radc_lang::schema::FileKind;
+
+use crate::config::Config;
+
+/// Auxiliary files larger than this are not read for content checks (as in the CLI).
+const MAX_AUX_FILE: u64 = 64 << 20;
+
+pub struct DiskAuxFiles {
+    raypath: Vec<PathBuf>,
+    generators: bool,
+}
+
+impl DiskAuxFiles {
+    /// `raypath` from the client's settings, or else the `RAYPATH` variable; whether
+    /// built-in generators expand.
+    pub fn new(config: &Config) -> Self {
+        let raypath = config.raypath.clone().unwrap_or_else(|| {
+            std::env::var_os("RAYPATH")
+                .map(|v| std::env::split_paths(&v).collect())
+                .unwrap_or_default()
+        });
+        DiskAuxFiles {
+            raypath,
+            generators: config.generators,
+        }
+    }
+
+    fn find(&self, name: &str, scene_path: &Path) -> Option<PathBuf> {
+        let p = Path::new(name);
+        if p.is_absolute() {
+            return p.exists().then(|| p.to_path_buf());
+        }
+        let scene_dir = scene_path.parent().map(Path::to_path_buf);
+        scene_dir
+            .into_iter()
+            .chain(std::iter::once(PathBuf::from(".")))
+            .chain(self.raypath.iter().cloned())
+            .map(|d| d.join(p))
+            .find(|candidate| candidate.exists())
+    }
+}
+
+impl AuxFiles for DiskAuxFiles {
+    fn exists(&self, name: &str, _kind: FileKind, scene_path: &Path) -> bool {
+        self.find(name, scene_path).is_some()
+    }
+
+    fn locate(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<PathBuf> {
+        self.find(name, scene_path)
+    }
+
+    fn read(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<String> {
+        let path = self.find(name, scene_path)?;
+        if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {
+            return None;
+        }
+        let bytes = std::fs::read(path).ok()?;
+        Some(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    fn read_head(
+        &self,
+        name: &str,
+        _kind: FileKind,
+        scene_path: &Path,
+        max: usize,
+    ) -> Option<Vec<u8>> {
+        use std::io::Read;
+        let file = std::fs::File::open(self.find(name, scene_path)?).ok()?;
+        let mut head = Vec::with_capacity(max);
+        file.take(max as u64).read_to_end(&mut head).ok()?;
+        Some(head)
+    }
+
+    fn expand(&self, command: &str, scene_path: &Path) -> Result<String, Expansion> {
+        if !self.generators {
+            return Err(Expansion::NotExpanded {
+                reason: "expanding built-in generators is turned off in the settings".into(),
+            });
+        }
+        let mut host = GeneratorHost {
+            dir: scene_path
+                .parent()
+                .map(Path::to_path_buf)
+                .unwrap_or_default(),
+            raypath: &self.raypath,
+        };
+        match radc_generators::command::run_builtin(command, &mut host) {
+            Some(Ok(text)) => Ok(text),
+            Some(Err(e)) => {
+                let program = command.split_whitespace().next().unwrap_or("command");
+                Err(failed(program.rsplit('/').next().unwrap_or(program), e))
+            }
+            None => Err(Expansion::NotExpanded {
+                reason: "radc builds in genbox, genprism, genrev, gensky, gensurf, genworm and \
+                         xform; the language server never runs other commands"
+                    .into(),
+            }),
+        }
+    }
+}
+
+/// How a generator's failure reads, as `radc check` words it.
+fn failed(program: &str, e: GenError) -> Expansion {
+    match e {
+        GenError::Scene(m) if m.contains("nested more than") => Expansion::Cycle {
+            message: format!("{program}: {m}"),
+        },
+        GenError::Transform(d) => Expansion::Failed {
+            message: format!("{program}: {}", d.message),
+            hint: d.hint,
+        },
+        other => Expansion::Failed {
+            message: format!("{program}: {other}"),
+            hint: None,
+        },
+    }
+}
+
+/// Files for generators run from a scene: relative to the scene's folder, then
+/// RAYPATH. Commands nested in files xform reads are refused (the trait's default).
+struct GeneratorHost<'a> {
+    dir: PathBuf,
+    raypath: &'a [PathBuf],
+}
+
+impl Host for GeneratorHost<'_> {
+    fn read_file(&mut self, path: &str) -> Result<String, GenError> {
+        let p = Path::new(path);
+        let mut candidates = vec![self.dir.join(p)];
+        if !p.is_absolute() {
+            candidates.extend(self.raypath.iter().map(|d| d.join(p)));
+        }
+        for c in &candidates {
+            if let Ok(bytes) = std::fs::read(c) {
+                return Ok(String::from_utf8_lossy(&bytes).into_owned());
+            }
+        }
+        Err(GenError::Host(format!("cannot find file \"{path}\"")))
+    }
+
+    fn read_stdin(&mut self) -> Result<String, GenError> {
+        Ok(String::new())
+    }
+}
