@@ -10,8 +10,9 @@ pub use columns::{Record, c_atof};
 pub use format::{format_g, format_outputs};
 
 use radc_lang::cal::Module;
-use radc_lang::cal::eval::{EvalError, Evaluator, MathErrors, NoInput, Warning};
+use radc_lang::cal::eval::{EvalError, Evaluator, Input, MathErrors, NoInput, Warning};
 use radc_lang::cal::ir::DefId;
+use radc_lang::cal::ir::Expr;
 use radc_lang::cal::syntax::DefKind;
 use std::fmt;
 
@@ -22,6 +23,8 @@ pub enum Error {
     Eval(EvalError),
     /// rcalc refuses a `cond` defined with `:` ("cond: defined as constant").
     ConstantCond,
+    /// An output format names a string variable no `-s` set.
+    UndefinedString(String),
 }
 
 impl fmt::Display for Error {
@@ -29,6 +32,7 @@ impl fmt::Display for Error {
         match self {
             Error::Eval(e) => e.fmt(f),
             Error::ConstantCond => write!(f, "cond: defined as constant"),
+            Error::UndefinedString(n) => write!(f, "{n}: undefined string"),
         }
     }
 }
@@ -65,13 +69,12 @@ impl<'m> Interpreter<'m> {
                 .current_def(s)
                 .is_some_and(|d| !module.def(d).is_function())
         });
-        if let Some(s) = cond {
-            if module
+        if let Some(s) = cond
+            && module
                 .current_def(s)
                 .is_some_and(|d| module.def(d).kind == DefKind::Constant)
-            {
-                return Err(Error::ConstantCond);
-            }
+        {
+            return Err(Error::ConstantCond);
         }
         let var = |name: &str| {
             module
@@ -93,12 +96,33 @@ impl<'m> Interpreter<'m> {
 
     /// rcalc `-n`: one record with no input.
     pub fn single(&mut self) -> Result<Outputs, Error> {
-        self.ev.next_record();
+        self.begin_single();
         self.outputs(&mut NoInput)
+    }
+
+    /// A new input file: rcalc numbers records (`recno`, `outno`) from 1 in each.
+    pub fn start_file(&mut self) {
+        self.nrecs = 0;
+        self.nout = 0;
+    }
+
+    /// Start rcalc's single `-n` record, for callers that evaluate their own
+    /// expressions (an `-o` format) with [`Interpreter::eval`].
+    pub fn begin_single(&mut self) {
+        self.ev.next_record();
     }
 
     /// One input record: `None` when `cond` rejects it.
     pub fn record(&mut self, record: &mut Record) -> Result<Option<Outputs>, Error> {
+        if !self.begin_record(record)? {
+            return Ok(None);
+        }
+        self.outputs(record).map(Some)
+    }
+
+    /// Start a record (rcalc.c `execute`): set `recno`/`outno`, expire `=` values and
+    /// test `cond`. `false` when the record is filtered out.
+    pub fn begin_record(&mut self, record: &mut dyn Input) -> Result<bool, Error> {
         self.nrecs += 1;
         if let Some(d) = self.recno {
             self.ev.set_value(d, self.nrecs as f64);
@@ -107,17 +131,46 @@ impl<'m> Interpreter<'m> {
             self.ev.set_value(d, (self.nout + 1) as f64);
         }
         self.ev.next_record();
-        if let Some(c) = self.cond {
-            if self.ev.variable(c, record)? <= 0.0 {
-                return Ok(None);
-            }
+        // `varvalue("cond") > 0.0` accepts: a NaN cond rejects the record.
+        if let Some(c) = self.cond
+            && self.ev.variable(c, record)?.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+        {
+            return Ok(false);
         }
-        let out = self.outputs(record)?;
         self.nout += 1;
-        Ok(Some(out))
+        Ok(true)
     }
 
-    fn outputs(&mut self, input: &mut dyn radc_lang::cal::eval::Input) -> Result<Outputs, Error> {
+    /// Set a variable for this record as rcalc's `varset(name, '=', v)` does for an
+    /// input format's fields. The module must already define it (with
+    /// [`Module::set_variable`]); returns false if it does not.
+    pub fn set_named(&mut self, name: &str, value: f64) -> bool {
+        let module = self.module;
+        match module
+            .lookup(name)
+            .and_then(|s| module.current_def(s))
+            .filter(|&d| !module.def(d).is_function())
+        {
+            Some(d) => {
+                self.ev.set_value(d, value);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Evaluate an expression of this module (an `-o` format field) in the current
+    /// record.
+    pub fn eval(&mut self, e: &'m Expr, input: &mut dyn Input) -> Result<f64, Error> {
+        Ok(self.ev.eval_top(e, input)?)
+    }
+
+    /// The `$N` columns of the record begun with [`Interpreter::begin_record`].
+    pub fn outputs_for(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
+        self.outputs(input)
+    }
+
+    fn outputs(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
         let mut out = Vec::with_capacity(self.module.outputs().len());
         for (chan, o) in self.module.outputs() {
             match self.ev.eval_top(&o.body, input) {

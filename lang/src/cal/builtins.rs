@@ -92,13 +92,20 @@ impl Builtin {
     /// The one-argument functions that map straight to the C math library.
     pub fn unary(self, x: f64) -> Option<f64> {
         Some(match self {
+            // Outside [-1, 1] the reference rcalc (built with -ffast-math, so calling
+            // glibc's `__acos_finite` rather than the `acos` wrapper) gets the x86
+            // default NaN, whose sign bit is set: it prints `-nan`. Likewise log10.
+            Builtin::Acos | Builtin::Asin if x.abs() > 1.0 => DEFAULT_NAN,
+            Builtin::Log10 if x < 0.0 => DEFAULT_NAN,
             Builtin::Acos => x.acos(),
             Builtin::Asin => x.asin(),
             Builtin::Atan => x.atan(),
-            Builtin::Ceil => x.ceil(),
+            // The reference rcalc's floor and ceil (inlined under -ffast-math) never
+            // return -0: ceil(-0.5) and floor(-0) print 0. Checked against rcalc.
+            Builtin::Ceil => no_negative_zero(x.ceil()),
             Builtin::Cos => x.cos(),
             Builtin::Exp => x.exp(),
-            Builtin::Floor => x.floor(),
+            Builtin::Floor => no_negative_zero(x.floor()),
             Builtin::Log => x.ln(),
             Builtin::Log10 => x.log10(),
             Builtin::Rand => rand(x),
@@ -135,12 +142,23 @@ impl Builtin {
     }
 }
 
+/// The NaN x86 SSE arithmetic produces for an invalid operation (`0/0`, `sqrt(-1)`):
+/// sign bit set, printed `-nan` by glibc.
+pub const DEFAULT_NAN: f64 = f64::from_bits(0xfff8_0000_0000_0000);
+
+fn no_negative_zero(x: f64) -> f64 {
+    if x == 0.0 { 0.0 } else { x }
+}
+
 /// calcomp's `rand`: a deterministic hash, not a generator, so a scene renders the
 /// same every time. The constants are calfunc.c's (`e` and `pi/4` to 15 digits); the
 /// operation order is kept so every bit matches.
 pub fn rand(x: f64) -> f64 {
     let mut x = x;
-    x *= 1.0 / (1.0 + x * x) + 2.71828182845904;
+    // Radiance's 15-digit e, not `std::f64::consts::E`: the last bits matter.
+    #[allow(clippy::approx_constant)]
+    let e15 = 2.71828182845904;
+    x *= 1.0 / (1.0 + x * x) + e15;
     x += 0.785398163397447 - x.floor();
     x = 1e5 / x;
     x - x.floor()

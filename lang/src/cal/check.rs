@@ -42,6 +42,13 @@ pub fn check_with_entries(
         diags: &mut diags,
     };
     checker.run(entries);
+    // A call with too few arguments that folding also tripped on is one problem.
+    let arity: HashSet<(u32, u32)> = diags
+        .iter()
+        .filter(|d| d.code == diagnostic::E0602)
+        .map(|d| (d.span.start, d.span.end))
+        .collect();
+    diags.retain(|d| d.code != diagnostic::E0701 || !arity.contains(&(d.span.start, d.span.end)));
     diags.sort_by_key(|d| (d.span.start, d.span.end));
     diags
 }
@@ -64,7 +71,7 @@ impl Checker<'_> {
         let mut undefined_reported = HashSet::new();
         for &id in &mine {
             let def = self.m.def(id);
-            self.check_expr(&def.body, def, false, &mut undefined_reported);
+            self.check_expr(&def.body, false, &mut undefined_reported);
             self.check_constant(def);
         }
         for o in self.m.outputs().values() {
@@ -77,19 +84,7 @@ impl Checker<'_> {
     }
 
     fn check_top_expr(&mut self, e: &Expr, reported: &mut HashSet<SymId>) {
-        let dummy = Def {
-            sym: SymId(u32::MAX),
-            name: super::syntax::Ident {
-                name: String::new(),
-                span: Span::default(),
-            },
-            params: None,
-            kind: DefKind::Assign,
-            body: e.clone(),
-            span: Span::default(),
-            parse_time_value: None,
-        };
-        self.check_expr(e, &dummy, false, reported);
+        self.check_expr(e, false, reported);
     }
 
     fn is_defined(&self, s: SymId) -> bool {
@@ -123,7 +118,7 @@ impl Checker<'_> {
             )
         };
         let known = self.m.known_names();
-        match suggest(name, known.iter().copied().filter(|k| k != name)) {
+        match closest_name(name, &known, |k| self.m.library().any(|l| l.name() == k)) {
             Some(s) => d = d.with_hint(format!("did you mean '{s}'?")),
             None => {
                 d = d.with_hint(
@@ -134,13 +129,7 @@ impl Checker<'_> {
         self.diags.push(d);
     }
 
-    fn check_expr(
-        &mut self,
-        e: &Expr,
-        def: &Def,
-        is_argument: bool,
-        reported: &mut HashSet<SymId>,
-    ) {
+    fn check_expr(&mut self, e: &Expr, is_argument: bool, reported: &mut HashSet<SymId>) {
         match &e.node {
             Node::Var(s) => {
                 if !self.is_defined(*s) {
@@ -162,14 +151,14 @@ impl Checker<'_> {
                     self.check_call(*s, args, e.span, reported);
                 }
                 for a in args {
-                    self.check_expr(a, def, true, reported);
+                    self.check_expr(a, true, reported);
                 }
                 return;
             }
             _ => {}
         }
         for c in e.children() {
-            self.check_expr(c, def, false, reported);
+            self.check_expr(c, false, reported);
         }
     }
 
@@ -227,18 +216,17 @@ impl Checker<'_> {
                 )
                 .with_hint("Radiance stops with 'too few arguments' when the missing one is used"),
             );
-        } else if let Some(max) = max {
-            if args.len() > max {
-                self.diags.push(Diagnostic::new(
-                    diagnostic::W0605,
-                    span,
-                    format!(
-                        "'{name}' takes {max} argument{}; the other {} are ignored",
-                        if max == 1 { "" } else { "s" },
-                        args.len() - max
-                    ),
-                ));
-            }
+        } else if let Some(max) = max.filter(|&max| args.len() > max) {
+            self.diags.push(Diagnostic::new(
+                diagnostic::W0605,
+                span,
+                format!(
+                    "'{name}' takes {max} argument{}; {} extra {} ignored",
+                    if max == 1 { "" } else { "s" },
+                    args.len() - max,
+                    if args.len() - max == 1 { "is" } else { "are" }
+                ),
+            ));
         }
     }
 
@@ -376,6 +364,50 @@ impl Checker<'_> {
             }
         }
     }
+}
+
+/// The "did you mean" candidate: `suggest`'s distance limit, then among equally close
+/// names the library's own (`sqrt` before rayinit.cal's `Sqrt` or `sq` for `sqt`), the
+/// same initial case, and the longer name; else a swap of two adjacent characters.
+fn closest_name<'a>(
+    name: &str,
+    known: &[&'a str],
+    is_library: impl Fn(&str) -> bool,
+) -> Option<&'a str> {
+    let candidates: Vec<&str> = known.iter().copied().filter(|k| *k != name).collect();
+    let Some(best) = suggest(name, candidates.iter().copied()) else {
+        return transposed(name, known);
+    };
+    let distance = diagnostic::edit_distance(name, best);
+    let upper = |s: &str| s.chars().next().is_some_and(char::is_uppercase);
+    candidates
+        .into_iter()
+        .filter(|k| diagnostic::edit_distance(name, k) == distance)
+        .max_by_key(|k| {
+            (
+                is_library(k),
+                upper(k) == upper(name),
+                k.len(),
+                std::cmp::Reverse(*k),
+            )
+        })
+}
+
+/// A known name that is `name` with two adjacent characters swapped (`scael` for
+/// `scale`): the typo the edit-distance limit of `suggest` misses in short names.
+fn transposed<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
+    let n: Vec<char> = name.chars().collect();
+    known.iter().copied().find(|k| {
+        let k: Vec<char> = k.chars().collect();
+        if k.len() != n.len() {
+            return false;
+        }
+        let diff: Vec<usize> = (0..n.len()).filter(|&i| n[i] != k[i]).collect();
+        diff.len() == 2
+            && diff[1] == diff[0] + 1
+            && n[diff[0]] == k[diff[1]]
+            && n[diff[1]] == k[diff[0]]
+    })
 }
 
 /// The highest parameter number a function body uses.

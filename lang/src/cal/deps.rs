@@ -78,6 +78,29 @@ mod tests {
     }
 
     #[test]
+    fn function_files_have_their_own_context() {
+        let mut m = Module::new(&Env::renderer());
+        let d = m.load_function_file(
+            FileId(1),
+            "wood.cal",
+            "grain = sq(Px) + k; k : 2; unused = 3",
+        );
+        assert!(d.is_empty(), "{d:?}");
+        // The primitive's expression sees the file's names, then the global ones.
+        let e = m
+            .add_expression(FileId(2), "grain * PI")
+            .unwrap_or_else(|_| Expr::num(0.0, Default::default()));
+        let names: Vec<String> = needed_by_expr(&m, &e)
+            .into_iter()
+            .map(|d| m.symbol(m.def(d).sym).name.clone())
+            .collect();
+        assert_eq!(names, ["Px", "grain`wood", "k`wood"]);
+        m.set_context("");
+        assert!(m.lookup("grain").is_none());
+        assert!(m.lookup("grain`wood`").is_some());
+    }
+
+    #[test]
     fn replaced_definitions_are_not_needed() {
         let mut m = Module::new(&Env::bare());
         m.add_source(FileId(0), "a = old; a = new; old = 1; new = 2");

@@ -91,6 +91,8 @@ pub enum EvalError {
     ArgumentNotFunction(String),
     NoInput,
     IllegalChannel,
+    /// `select` with an index beyond C's `int` ("Bad call to argument!").
+    BadArgumentCall,
     /// A renderer function called outside the renderer.
     NotAvailable(String),
     /// Recursion deeper than [`MAX_DEPTH`]; Radiance would run out of stack.
@@ -105,6 +107,7 @@ impl fmt::Display for EvalError {
             EvalError::TooFewArguments(n) => write!(f, "{n}(): too few arguments"),
             EvalError::ArgumentNotFunction(n) => write!(f, "{n}(): argument not a function"),
             EvalError::NoInput => write!(f, "no column input"),
+            EvalError::BadArgumentCall => write!(f, "Bad call to argument!"),
             EvalError::IllegalChannel => write!(f, "illegal channel number"),
             EvalError::NotAvailable(n) => {
                 write!(f, "{n}(): only the renderer can evaluate this function")
@@ -116,7 +119,8 @@ impl fmt::Display for EvalError {
 
 impl std::error::Error for EvalError {}
 
-/// Deepest call nesting evaluated before giving up with [`EvalError::TooDeep`].
+/// Deepest call nesting evaluated before giving up with [`EvalError::TooDeep`] (rcalc
+/// itself recurses until the C stack runs out).
 pub const MAX_DEPTH: u64 = 20_000;
 
 /// An active function call: the argument expressions of the call site, the values
@@ -151,6 +155,7 @@ pub struct Evaluator<'m> {
     pub warnings: Vec<Warning>,
     /// Values the host sets from outside (rcalc's `recno`, `outno`).
     overrides: Vec<(DefId, f64)>,
+    max_depth: u64,
 }
 
 impl<'m> Evaluator<'m> {
@@ -177,7 +182,15 @@ impl<'m> Evaluator<'m> {
             warn_nonconstant: module.folds(),
             warnings: Vec::new(),
             overrides: Vec::new(),
+            max_depth: MAX_DEPTH,
         }
+    }
+
+    /// Limit call nesting (each level takes a few kilobytes of stack): the default,
+    /// [`MAX_DEPTH`], wants a large stack such as `radc calc`'s evaluation thread.
+    pub fn with_max_depth(mut self, depth: u64) -> Self {
+        self.max_depth = depth;
+        self
     }
 
     /// Give a variable's definition a value set by the host, as rcalc's `varset` does
@@ -240,36 +253,47 @@ impl<'m> Evaluator<'m> {
             Node::Sum(v) => {
                 let mut sum = 0.0;
                 for x in v {
-                    sum += self.eval(x, act, input)?;
+                    let x = self.eval(x, act, input)?;
+                    sum = nan_first(sum, x, sum + x);
                 }
                 sum
             }
             Node::Product(v) => {
                 let mut prod = 1.0;
                 for x in v {
-                    prod *= self.eval(x, act, input)?;
+                    let x = self.eval(x, act, input)?;
+                    prod = nan_first(prod, x, prod * x);
                 }
                 prod
             }
             Node::Sub(a, b) => {
                 let a = self.eval(a, act, input)?;
-                a - self.eval(b, act, input)?
+                let b = self.eval(b, act, input)?;
+                nan_first(a, b, a - b)
             }
-            // calexpr.c `edivi` evaluates the denominator first.
+            // calexpr.c `edivi` evaluates the denominator first and, when it is zero,
+            // warns, raises errno and returns 0. The reference rcalc is built with
+            // -ffast-math, which returns the denominator itself there (no signed
+            // zeros: `1/-0` gives -0) and also takes that branch for a NaN
+            // denominator (finite math: `1/nan` warns and gives that NaN). Checked
+            // against rcalc.
             Node::Div(a, b) => {
                 let den = self.eval(b, act, input)?;
-                if den == 0.0 {
+                if den == 0.0 || den.is_nan() {
                     self.warnings.push(Warning::DivisionByZero);
                     self.errno = Some(Errno::Range);
-                    0.0
+                    den
                 } else {
                     self.eval(a, act, input)? / den
                 }
             }
             Node::Pow(a, b) => {
+                // `pow(evalue(base), evalue(exponent))`: the reference build (GCC,
+                // x86-64) evaluates C arguments right to left, so the exponent goes
+                // first and a library call in the base clears an error it raised.
                 self.errno = None;
-                let x = self.eval(a, act, input)?;
                 let y = self.eval(b, act, input)?;
+                let x = self.eval(a, act, input)?;
                 let d = x.powf(y);
                 self.check_nonfinite(d);
                 if self.errno.is_some() {
@@ -340,15 +364,25 @@ impl<'m> Evaluator<'m> {
         if fresh {
             return Ok(c.value);
         }
-        let value = self.eval(&def.body, None, input)?;
+        let before = c;
+        // The stamp is set before evaluating, as caldefn.c does: a definition that
+        // refers to itself (directly or through others) sees its previous value, so
+        // `a = a + 1` counts records instead of recursing forever.
         if let Some(c) = self.cache.get_mut(slot) {
             c.tick = match def.kind {
                 DefKind::Constant => FOREVER,
                 DefKind::Assign => self.clock,
             };
-            c.value = value;
         }
-        Ok(value)
+        let value = self.eval(&def.body, None, input);
+        if let Some(c) = self.cache.get_mut(slot) {
+            match value {
+                Ok(v) => c.value = v,
+                // A failed evaluation leaves no value behind (folding may go on).
+                Err(_) => *c = before,
+            }
+        }
+        value
     }
 
     /// calfunc.c `argument`: argument n of the active call, computed at most once, in
@@ -427,7 +461,7 @@ impl<'m> Evaluator<'m> {
                 .push(Warning::Depth(symbol.name.clone(), self.depth));
             self.next_report = self.next_report.saturating_mul(10);
         }
-        if self.depth > MAX_DEPTH {
+        if self.depth > self.max_depth {
             self.depth -= 1;
             return Err(EvalError::TooDeep(symbol.name.clone()));
         }
@@ -508,6 +542,10 @@ impl<'m> Evaluator<'m> {
                     0.0
                 } else if n == 0 {
                     (nargs - 1) as f64
+                } else if n < 0 {
+                    // An index past C's int range converts to INT_MIN: rcalc then
+                    // stops with "Bad call to argument!".
+                    return Err(EvalError::BadArgumentCall);
                 } else {
                     self.argument(act, n as u32 + 1, input)?
                 }
@@ -534,9 +572,10 @@ impl<'m> Evaluator<'m> {
                 }
                 best
             }
+            // Arguments right to left, as for `^`.
             Builtin::Atan2 => {
-                let y = self.argument(act, 1, input)?;
                 let x = self.argument(act, 2, input)?;
+                let y = self.argument(act, 1, input)?;
                 y.atan2(x)
             }
             other => {
@@ -547,8 +586,27 @@ impl<'m> Evaluator<'m> {
     }
 }
 
-/// `(int)(x + .5)` as C computes it: truncation toward zero (saturating here where C
-/// would be undefined).
+/// x86 SSE arithmetic with two NaN operands returns the first (the destination
+/// register); LLVM may swap the operands of `+` and `*`, so the choice is made here,
+/// in the order the reference rcalc's code uses (checked: `nan + -nan` is `nan`,
+/// `nan / -nan` is `-nan`). With one NaN operand, that NaN is the result.
+fn nan_first(first: f64, second: f64, result: f64) -> f64 {
+    if first.is_nan() {
+        first
+    } else if second.is_nan() {
+        second
+    } else {
+        result
+    }
+}
+
+/// `(int)(x + .5)` as the reference rcalc computes it on x86-64: truncation toward
+/// zero, and `INT_MIN` for NaN or anything outside `int` (`cvttsd2si`).
 pub fn c_round(x: f64) -> i64 {
-    (x + 0.5) as i64
+    let v = x + 0.5;
+    if v.is_nan() || v >= 2_147_483_648.0 || v <= -2_147_483_649.0 {
+        i64::from(i32::MIN)
+    } else {
+        v as i64
+    }
 }

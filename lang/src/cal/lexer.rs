@@ -53,8 +53,9 @@ pub enum Token<'a> {
     Name(&'a str),
 
     /// `$N`: an input column on the right of `=`, an output column on the left.
-    /// Radiance reads the digits after `$` with `getinum`, so `$` alone is column 0.
-    #[regex(r"\$[0-9]*", parse_channel)]
+    /// Radiance reads the digits after `$` with `getinum`, so `$` alone is column 0,
+    /// and its scanner skips white space after the `$` (`$ 1` is column 1).
+    #[regex(r"\$[ \t\r\n\f\v]*[0-9]*", parse_channel)]
     Channel(u32),
 
     #[token("+")]
@@ -98,9 +99,12 @@ fn parse_number<'a>(lex: &mut logos::Lexer<'a, Token<'a>>) -> Option<f64> {
 /// Channel numbers beyond `u32` saturate; Radiance's `int` would overflow instead,
 /// and no input has that many columns.
 fn parse_channel<'a>(lex: &mut logos::Lexer<'a, Token<'a>>) -> u32 {
-    lex.slice()[1..].bytes().fold(0u32, |n, b| {
-        n.saturating_mul(10).saturating_add(u32::from(b - b'0'))
-    })
+    lex.slice()
+        .bytes()
+        .filter(u8::is_ascii_digit)
+        .fold(0u32, |n, b| {
+            n.saturating_mul(10).saturating_add(u32::from(b - b'0'))
+        })
 }
 
 /// Comments nest (`escan` recurses on `{`), so a regex cannot match them.
@@ -147,14 +151,12 @@ impl fmt::Display for Token<'_> {
     }
 }
 
+/// A token or an error with its byte range.
+pub type Spanned<T> = (T, std::ops::Range<usize>);
+
 /// Every token with its byte range; lexing errors become [`Token::Error`] plus an
 /// entry in the error list so one bad character does not stop the scan.
-pub fn tokenize(
-    text: &str,
-) -> (
-    Vec<(Token<'_>, std::ops::Range<usize>)>,
-    Vec<(LexError, std::ops::Range<usize>)>,
-) {
+pub fn tokenize(text: &str) -> (Vec<Spanned<Token<'_>>>, Vec<Spanned<LexError>>) {
     let mut toks = Vec::new();
     let mut errs = Vec::new();
     for (tok, span) in Token::lexer(text).spanned() {
@@ -215,6 +217,10 @@ mod tests {
                 Token::Channel(12),
                 Token::Channel(0)
             ]
+        );
+        assert_eq!(
+            kinds("$ 3 $\t4"),
+            vec![Token::Channel(3), Token::Channel(4)]
         );
     }
 }

@@ -36,7 +36,19 @@ pub fn parse(file: FileId, text: &str) -> (Program, Vec<Diagnostic>) {
         if segment.is_empty() || segment.iter().any(|(t, _)| *t == Token::Error) {
             continue; // empty statement, or already reported by the lexer
         }
+        if let Some(d) = too_deep(file, segment) {
+            diags.push(d);
+            continue;
+        }
         match parse_statement(file, text, segment) {
+            Ok(stmt) if tree_depth(&stmt) > MAX_TREE_DEPTH => diags.push(
+                Diagnostic::new(
+                    diagnostic::E0501,
+                    stmt.span(),
+                    format!("this statement nests more than {MAX_TREE_DEPTH} operations deep"),
+                )
+                .with_hint("split it into several definitions"),
+            ),
             Ok(stmt) => {
                 check_params(&stmt, &mut diags);
                 statements.push(stmt);
@@ -73,6 +85,70 @@ pub fn parse_expr(file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic>> {
                 .map(|e| syntax_diagnostic(file, text, &tokens, e))
                 .collect()
         })
+}
+
+/// Parentheses nested deeper than this are refused before parsing: the parser, the
+/// resolver and the evaluator recurse on them, and no real file comes close.
+const MAX_PAREN_DEPTH: usize = 50;
+/// Deepest statement syntax tree accepted (a sum of 1000 terms is this deep).
+const MAX_TREE_DEPTH: usize = 1000;
+
+/// Refuse, before parsing, statements whose tree could be too deep to walk: the
+/// operator count bounds the depth. (Radiance's library peaks near 400.)
+fn too_deep(file: FileId, segment: &[(Token<'_>, std::ops::Range<usize>)]) -> Option<Diagnostic> {
+    let mut depth = 0usize;
+    let mut operators = 0usize;
+    for (t, r) in segment {
+        match t {
+            Token::LParen => depth += 1,
+            Token::RParen => depth = depth.saturating_sub(1),
+            Token::Plus | Token::Minus | Token::Star | Token::Slash | Token::Caret => {
+                operators += 1;
+                if operators > MAX_TREE_DEPTH {
+                    return Some(
+                        Diagnostic::new(
+                            diagnostic::E0501,
+                            Span::new(file, r.clone()),
+                            format!("this statement has more than {MAX_TREE_DEPTH} operators"),
+                        )
+                        .with_hint("split it into several definitions"),
+                    );
+                }
+            }
+            _ => {}
+        }
+        if depth > MAX_PAREN_DEPTH {
+            return Some(Diagnostic::new(
+                diagnostic::E0501,
+                Span::new(file, r.clone()),
+                format!("parentheses nest more than {MAX_PAREN_DEPTH} deep"),
+            ));
+        }
+    }
+    None
+}
+
+/// The depth of a statement's tree, without recursion (the tree may be deep).
+fn tree_depth(stmt: &Statement) -> usize {
+    let body = match stmt {
+        Statement::Definition(d) => &d.body,
+        Statement::Output(o) => &o.body,
+    };
+    let mut max = 0;
+    let mut stack = vec![(body, 1usize)];
+    while let Some((e, d)) = stack.pop() {
+        max = max.max(d);
+        match &e.kind {
+            ExprKind::Call { args, .. } => stack.extend(args.iter().map(|a| (a, d + 1))),
+            ExprKind::Neg(x) | ExprKind::Paren(x) => stack.push((x, d + 1)),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                stack.push((lhs, d + 1));
+                stack.push((rhs, d + 1));
+            }
+            _ => {}
+        }
+    }
+    max
 }
 
 fn eoi_span(segment: &[(Token<'_>, std::ops::Range<usize>)]) -> SimpleSpan {
@@ -314,14 +390,12 @@ fn syntax_diagnostic(
         let last = segment[segment.len() - 1].1.clone();
         d.span = Span::new(file, last);
     }
-    if let Some(Token::Name(_)) = e.found() {
-        if s.start > 0
-            && text[..s.start]
-                .trim_end()
-                .ends_with(|c: char| c.is_ascii_alphanumeric() || c == ')')
-        {
-            d = d.with_hint("is a ';' missing between two statements?");
-        }
+    let after_operand = text
+        .get(..s.start)
+        .map(str::trim_end)
+        .is_some_and(|t| t.ends_with(|c: char| c.is_ascii_alphanumeric() || c == ')'));
+    if matches!(e.found(), Some(Token::Name(_))) && after_operand {
+        d = d.with_hint("is a ';' missing between two statements?");
     }
     if matches!(e.found(), Some(Token::RParen))
         && text.get(s.start.saturating_sub(1)..s.start) == Some("(")

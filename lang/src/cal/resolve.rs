@@ -6,13 +6,16 @@
 //! constant function call folds to depends on the definitions made *before* it.
 
 use super::builtins::{Builtin, LibFn, RAYINIT_NAMES, RENDERER_FUNCTIONS, RENDERER_VARIABLES};
-use super::eval::{Errno, EvalError, Evaluator, NoInput, Warning};
+use super::eval::{Errno, EvalError, Evaluator, Input, Warning};
 use super::fold;
 use super::ir::{Callee, Def, DefId, Expr, Node, OutputDef, SymId, Symbol};
 use super::syntax::{self, BinOp, DefKind, ExprKind, Ident, Statement};
 use crate::diagnostic::{self, Diagnostic};
 use crate::source::{FileId, Span};
 use std::collections::{BTreeMap, HashMap};
+
+/// Call nesting allowed while folding at parse time.
+const PARSE_TIME_MAX_DEPTH: u64 = 100;
 
 /// calcomp's context mark.
 const CNTXMARK: char = '`';
@@ -98,6 +101,8 @@ pub struct Module {
     host_names: HashMap<SymId, HostName>,
     context: String,
     fold: bool,
+    /// Errors while folding are the program's own (see [`Env::complete`]).
+    complete: bool,
     /// Warnings Radiance prints while folding at parse time.
     pub parse_warnings: Vec<Warning>,
 }
@@ -106,6 +111,7 @@ impl Module {
     pub fn new(env: &Env) -> Self {
         let mut m = Module {
             fold: env.fold,
+            complete: env.complete,
             ..Module::default()
         };
         for b in Builtin::ALL {
@@ -208,6 +214,39 @@ impl Module {
         let (program, mut diags) = super::parser::parse(file, text);
         diags.extend(self.add_program(&program));
         diags
+    }
+
+    /// Load a function file named by a primitive as the renderer does (func.c
+    /// `getfunc`): its definitions live in a context named after the file (without a
+    /// `.cal` suffix); `.` means no file and the global context. The primitive's
+    /// expression arguments are then added with [`Module::add_expression`] in that
+    /// context. Call [`Module::set_context`] with `""` to return to the global one.
+    pub fn load_function_file(&mut self, file: FileId, name: &str, text: &str) -> Vec<Diagnostic> {
+        if name == "." {
+            self.set_context("");
+            return Vec::new();
+        }
+        let lower = name.to_ascii_lowercase();
+        let ctx = if lower.len() > 4 && lower.ends_with(".cal") {
+            &name[..name.len() - 4]
+        } else {
+            name
+        };
+        self.set_context(ctx);
+        self.add_source(file, text)
+    }
+
+    /// Parse and lower one expression in the current definitions (an rcalc `-o`
+    /// format field: calexpr.c `eparse`, folded but never flattened).
+    pub fn add_expression(&mut self, file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic>> {
+        let e = super::parser::parse_expr(file, text)?;
+        let mut diags = Vec::new();
+        let lowered = self.lower(&e, None, &mut diags);
+        if diags.iter().any(Diagnostic::is_error) {
+            Err(diags)
+        } else {
+            Ok(lowered)
+        }
     }
 
     /// Add parsed statements in order, folding as Radiance would at each point.
@@ -367,7 +406,7 @@ impl Module {
             },
             BinOp::Mul | BinOp::Div => match (rn, ln) {
                 (Some(v), _) if op == BinOp::Div => {
-                    if v == 0.0 {
+                    if fast_eq(v, 0.0) {
                         diags.push(
                             Diagnostic::new(
                                 diagnostic::E0604,
@@ -386,16 +425,17 @@ impl Module {
                         }
                     }
                 }
-                (Some(v), _) if v == 0.0 => r, // E * 0
-                (_, Some(v)) if v == 0.0 => l, // 0 * E, 0 / E
+                (Some(v), _) if fast_eq(v, 0.0) => r, // E * 0
+                (_, Some(v)) if fast_eq(v, 0.0) => l, // 0 * E, 0 / E
                 _ => build(l, r),
             },
             BinOp::Pow => {
-                if ln == Some(0.0) {
+                let is = |x: Option<f64>, c: f64| x.is_some_and(|v| fast_eq(v, c));
+                if is(ln, 0.0) {
                     l // 0 ^ E
-                } else if rn == Some(0.0) || ln == Some(1.0) {
+                } else if is(rn, 0.0) || is(ln, 1.0) {
                     Expr::num(1.0, span) // E ^ 0, 1 ^ E
-                } else if rn == Some(1.0) {
+                } else if is(rn, 1.0) {
                     l // E ^ 1
                 } else {
                     build(l, r)
@@ -417,9 +457,12 @@ impl Module {
     /// calexpr.c `rconst`: evaluate now. An error raised while doing so is fatal in
     /// Radiance ("bad constant expression"). Expressions that need input are left.
     fn rconst(&mut self, e: Expr, diags: &mut Vec<Diagnostic>) -> Expr {
+        let mut input = ParseTimeInput::default();
         let (result, errno, computed, warnings) = {
-            let mut ev = Evaluator::new(self);
-            let r = ev.eval_top(&e, &mut NoInput);
+            // Folding runs on the caller's stack (an editor, a test thread): keep it
+            // shallow; a deeper constant recursion is left for run time.
+            let mut ev = Evaluator::new(self).with_max_depth(PARSE_TIME_MAX_DEPTH);
+            let r = ev.eval_top(&e, &mut input);
             let computed: Vec<(DefId, f64)> = ev.constants_computed().collect();
             (r, ev.errno(), computed, std::mem::take(&mut ev.warnings))
         };
@@ -436,19 +479,40 @@ impl Module {
                         Errno::Domain => "leaves a function's domain",
                         Errno::Range => "divides by zero or overflows",
                     };
-                    diags.push(
-                        Diagnostic::new(
-                            diagnostic::E0604,
-                            e.span,
-                            format!("this constant expression {what}"),
-                        )
-                        .with_hint("Radiance stops with 'bad constant expression'"),
-                    );
+                    // In a library checked alone, a constant that read input columns
+                    // got rcalc's empty first record: only a complete program knows.
+                    if self.complete || !input.read {
+                        diags.push(
+                            Diagnostic::new(
+                                diagnostic::E0604,
+                                e.span,
+                                format!("this constant expression {what}"),
+                            )
+                            .with_hint("Radiance stops with 'bad constant expression'"),
+                        );
+                    }
                 }
                 Expr::num(v, e.span)
             }
-            Err(EvalError::NoInput | EvalError::NotAvailable(_)) => e,
-            Err(_) => e,
+            // Past our own depth limit, or needing the renderer: left for run time.
+            Err(EvalError::TooDeep(_) | EvalError::NotAvailable(_) | EvalError::NoInput) => e,
+            // A name not defined yet: fatal for rcalc, which folds as it parses; in a
+            // library it is a free name its user defines.
+            Err(err) => {
+                if self.complete {
+                    diags.push(
+                        Diagnostic::new(
+                            diagnostic::E0701,
+                            e.span,
+                            format!("folding this constant fails: {err}"),
+                        )
+                        .with_hint(
+                            "Radiance evaluates ':' constants as it reads them: define what they use first",
+                        ),
+                    );
+                }
+                e
+            }
         }
     }
 
@@ -629,6 +693,34 @@ const RAY_CHANNELS: &[(&str, u32)] = &[
     ("Lu", 26),
     ("Lv", 27),
 ];
+
+/// Input columns read while parsing: rcalc has read no record yet, so its empty
+/// input buffer gives 0 for every column (rcalc.c `chanvalue` on an empty line). A
+/// `:` constant that reads a column is thus 0 for good, as rcalc computes it.
+#[derive(Default)]
+struct ParseTimeInput {
+    /// A column was read: the value depends on input, so an error found while
+    /// folding is a property of rcalc's empty first buffer, not of the program.
+    read: bool,
+}
+
+impl Input for ParseTimeInput {
+    fn column(&mut self, _: u32) -> Result<(f64, Option<Errno>), EvalError> {
+        self.read = true;
+        Ok((0.0, None))
+    }
+    fn column_count(&mut self) -> Result<f64, EvalError> {
+        self.read = true;
+        Ok(0.0)
+    }
+}
+
+/// `==` on doubles as the reference rcalc (built with -ffast-math) compiles it in
+/// calexpr.c's folding: a NaN constant compares equal to anything, so `E^sqrt(-1)`
+/// folds to 1 and `E/sqrt(-1)` is "divide by zero constant" (checked against rcalc).
+fn fast_eq(v: f64, c: f64) -> bool {
+    v == c || v.is_nan()
+}
 
 fn build_sum(l: Expr, r: Expr, span: Span) -> Expr {
     Expr {

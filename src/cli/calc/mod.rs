@@ -1,13 +1,20 @@
 //! `radc calc`: rcalc, command-line compatible for the common options
-//! (`-e -f -n -s -t -w -u -i{a,d,f} -o{a,d,f} -in -on`, file arguments).
+//! (`-e -f -n -s -t -w -u -b -i{a,d,f} -o{a,d,f} -o format -in -on`, file arguments;
+//! not `-i format`, `-p`, `-P`).
 //! Syntax and resolution errors are diagnostics (exit 1); runtime warnings use rcalc's
 //! own words on stderr; bad options exit 2.
 
+mod format;
+mod input_format;
+
 use super::USAGE_ERROR;
+use format::{Field, Value};
 use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs};
 use radc_lang::cal::eval::MathErrors;
+use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
 use radc_lang::{Diagnostic, FileId};
+use std::collections::HashMap;
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -33,6 +40,31 @@ struct Options {
     in_limit: u64,
     out_limit: u64,
     files: Vec<String>,
+    /// `-o format`: its fields and the compiled expression of each number field.
+    record_format: Option<(Vec<Field>, Vec<Option<Expr>>)>,
+    /// `-i format`: the fields to match input against.
+    input_format: Option<Vec<Field>>,
+    /// `-s name=value`.
+    strings: HashMap<String, String>,
+    /// rcalc's `-b` (blanks compare equal), on by default.
+    blanks_equal: bool,
+    /// `-l`: ignore ends of lines in record formats.
+    ignore_eol: bool,
+    /// `-p`: pass unmatched input through; `-P`: also records `cond` rejects.
+    passive: Passive,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Passive {
+    Off,
+    Unmatched,
+    AlsoRejected,
+}
+
+/// One output record.
+enum Produced {
+    Columns(Outputs),
+    Text(String),
 }
 
 /// The texts compiled so far, by `FileId`, for rendering diagnostics.
@@ -45,7 +77,7 @@ pub fn run(args: &[String]) -> ExitCode {
     let mut module = Module::new(&Env {
         host: Host::Rcalc,
         fold: true,
-        complete: false,
+        complete: true,
     });
     let mut sources = Sources {
         names: Vec::new(),
@@ -63,6 +95,12 @@ pub fn run(args: &[String]) -> ExitCode {
         in_limit: 0,
         out_limit: 0,
         files: Vec::new(),
+        record_format: None,
+        input_format: None,
+        strings: HashMap::new(),
+        blanks_equal: true,
+        passive: Passive::Off,
+        ignore_eol: false,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -80,13 +118,17 @@ pub fn run(args: &[String]) -> ExitCode {
             }
             "-w" => o.nowarn = !o.nowarn,
             "-u" => o.unbuffered = !o.unbuffered,
-            "-b" | "-l" => {}
+            "-b" => o.blanks_equal = !o.blanks_equal,
+            "-p" => o.passive = Passive::Unmatched,
+            "-P" => o.passive = Passive::AlsoRejected,
+            "-l" => o.ignore_eol = !o.ignore_eol,
             "-e" => match value() {
                 Some(expr) => add(&mut module, &mut sources, &mut diags, "-e".into(), expr),
                 None => return usage("-e needs an expression"),
             },
             "-f" => match value() {
                 Some(name) => match find_on_raypath(&name) {
+                    Some(path) if path.is_dir() => {}
                     Some(path) => match std::fs::read(&path) {
                         Ok(bytes) => {
                             let text = String::from_utf8_lossy(&bytes).into_owned();
@@ -104,12 +146,43 @@ pub fn run(args: &[String]) -> ExitCode {
                 },
                 None => return usage("-f needs a file name"),
             },
-            "-s" => {
-                // String variables only matter to -i/-o record formats.
-                if value().is_none() {
-                    return usage("-s needs svar=sval");
+            "-s" => match value() {
+                // rcalc.c `svpreset`: a string variable for record formats.
+                Some(eq) => {
+                    if let Some((k, v)) = eq.split_once('=') {
+                        o.strings.insert(k.to_string(), v.to_string());
+                    }
                 }
-            }
+                None => return usage("-s needs svar=sval"),
+            },
+            "-o" => match value() {
+                Some(spec) => {
+                    match compile_format(&mut module, &mut sources, &mut diags, &spec, o.ignore_eol)
+                    {
+                        Ok(f) => {
+                            o.otype = Format::Ascii;
+                            o.record_format = Some(f);
+                        }
+                        Err(code) => return code,
+                    }
+                }
+                None => return usage("-o needs a format"),
+            },
+            "-i" => match value() {
+                Some(spec) => match read_format_text(&spec).and_then(|t| {
+                    format::parse(&t, o.ignore_eol).map_err(|e| {
+                        eprintln!("radc calc: {e} in input format");
+                        ExitCode::FAILURE
+                    })
+                }) {
+                    Ok(fields) => {
+                        o.itype = Format::Ascii;
+                        o.input_format = Some(fields);
+                    }
+                    Err(code) => return code,
+                },
+                None => return usage("-i needs a format"),
+            },
             "-in" | "-on" => {
                 let Some(n) = value().and_then(|v| v.parse::<u64>().ok()) else {
                     return usage(&format!("{a} needs a count"));
@@ -148,12 +221,22 @@ pub fn run(args: &[String]) -> ExitCode {
             eprintln!("{w}");
         }
     }
+    if o.passive != Passive::Off && (o.input_format.is_none() || o.record_format.is_none()) {
+        eprintln!("radc calc: options -p and -P require -i and -o formats");
+        return ExitCode::FAILURE;
+    }
     if o.noinput && !o.files.is_empty() {
         eprintln!("radc calc: file argument(s) incompatible with -n");
         return ExitCode::FAILURE;
     }
     for name in ["recno", "outno"] {
         if module.lookup(name).is_some() {
+            module.set_variable(name, 0.0);
+        }
+    }
+    // An input format's number fields become variables, set per record.
+    for f in o.input_format.iter().flatten() {
+        if let Field::Number { expr: name, .. } = f {
             module.set_variable(name, 0.0);
         }
     }
@@ -171,6 +254,59 @@ pub fn run(args: &[String]) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// rcalc.c `readfmt`: an inline format if it holds a `$`, else a file holding one.
+fn read_format_text(spec: &str) -> Result<String, ExitCode> {
+    if spec.contains('$') {
+        return Ok(spec.to_string());
+    }
+    match std::fs::read(spec) {
+        Ok(b) if !b.is_empty() => Ok(String::from_utf8_lossy(&b).into_owned()),
+        Ok(_) => {
+            eprintln!("radc calc: {spec}: empty file");
+            Err(ExitCode::FAILURE)
+        }
+        Err(e) => {
+            eprintln!("radc calc: {spec}: cannot open: {e}");
+            Err(ExitCode::FAILURE)
+        }
+    }
+}
+
+/// rcalc.c `readfmt`: an inline format if it holds a `$`, else a file holding one.
+/// Number fields are compiled now, against the definitions made so far.
+fn compile_format(
+    module: &mut Module,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+    spec: &str,
+    ignore_eol: bool,
+) -> Result<(Vec<Field>, Vec<Option<Expr>>), ExitCode> {
+    let text = read_format_text(spec)?;
+    let fields = format::parse(&text, ignore_eol).map_err(|e| {
+        eprintln!("radc calc: {e} in output format");
+        ExitCode::FAILURE
+    })?;
+    let mut exprs = Vec::with_capacity(fields.len());
+    for f in &fields {
+        exprs.push(match f {
+            Field::Number { expr, .. } => {
+                let file = FileId(sources.texts.len() as u32);
+                sources.names.push("-o".into());
+                sources.texts.push(expr.clone());
+                match module.add_expression(file, expr) {
+                    Ok(e) => Some(e),
+                    Err(d) => {
+                        diags.extend(d);
+                        None
+                    }
+                }
+            }
+            _ => None,
+        });
+    }
+    Ok((fields, exprs))
 }
 
 fn add(m: &mut Module, s: &mut Sources, diags: &mut Vec<Diagnostic>, name: String, text: String) {
@@ -207,19 +343,20 @@ fn usage(why: &str) -> ExitCode {
 
 /// rcalc's `getpath` with `getrlibpath`: absolute and `./` names as given, others
 /// searched in each RAYPATH directory (the current one if RAYPATH is unset).
+/// A directory is found too, as `getpath` does: `-f .` then reads nothing.
 fn find_on_raypath(name: &str) -> Option<PathBuf> {
     let p = Path::new(name);
-    if p.is_absolute() || name.starts_with("./") || name.starts_with("../") {
-        return p.is_file().then(|| p.to_path_buf());
+    if p.is_absolute() || name.starts_with("./") || name.starts_with("../") || name == "." {
+        return p.exists().then(|| p.to_path_buf());
     }
     let raypath = std::env::var("RAYPATH").unwrap_or_else(|_| ".".into());
     raypath
         .split(':')
         .map(|d| Path::new(if d.is_empty() { "." } else { d }).join(name))
-        .find(|c| c.is_file())
+        .find(|c| c.exists())
 }
 
-fn execute(module: &Module, o: &Options) -> ExitCode {
+fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
     let mut interp = match Interpreter::new(module, MathErrors::default()) {
         Ok(i) => i,
         Err(e) => {
@@ -230,8 +367,9 @@ fn execute(module: &Module, o: &Options) -> ExitCode {
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     let status = if o.noinput {
-        let r = interp.single().map(Some);
-        emit(&mut out, &mut interp, o, r)
+        interp.begin_single();
+        let r = produce(&mut interp, o, &mut radc_lang::cal::eval::NoInput, None);
+        emit(&mut out, &mut interp, o, r.map(Some))
     } else if o.files.is_empty() {
         let stdin = std::io::stdin();
         let mut input = stdin.lock();
@@ -242,6 +380,8 @@ fn execute(module: &Module, o: &Options) -> ExitCode {
             match std::fs::File::open(f) {
                 Ok(file) => {
                     let mut input = std::io::BufReader::new(file);
+                    // rcalc.c `execute` counts records (recno, -in, -on) per file.
+                    interp.start_file();
                     status = run_stream(&mut input, &mut interp, o, &mut out);
                 }
                 Err(e) => {
@@ -259,24 +399,26 @@ fn execute(module: &Module, o: &Options) -> ExitCode {
     let flushed = out.flush();
     match (status, flushed) {
         (Ok(()), Ok(())) => ExitCode::SUCCESS,
-        (Err(Stop::Done), _) => ExitCode::SUCCESS,
         (Ok(()), Err(_)) => ExitCode::FAILURE,
         (Err(Stop::Failed), _) => ExitCode::FAILURE,
     }
 }
 
+/// Why record processing stopped early: an evaluation error (already reported) or a
+/// write failure. Either way the exit status is 1.
 enum Stop {
-    /// `-in`/`-on` limit reached.
-    Done,
     Failed,
 }
 
-fn run_stream(
+fn run_stream<'m>(
     input: &mut dyn BufRead,
-    interp: &mut Interpreter<'_>,
-    o: &Options,
+    interp: &mut Interpreter<'m>,
+    o: &'m Options,
     out: &mut dyn Write,
 ) -> Result<(), Stop> {
+    if let Some(fields) = &o.input_format {
+        return run_matched(input, fields, interp, o, out);
+    }
     let mut nrecs = 0u64;
     let mut nout = 0u64;
     let mut line = Vec::new();
@@ -298,16 +440,72 @@ fn run_stream(
         nrecs += 1;
         let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
         let mut record = Record::new(&text, sep);
-        let result = interp.record(&mut record);
+        let result = match interp.begin_record(&mut record) {
+            Ok(true) => produce(interp, o, &mut record, None).map(Some),
+            Ok(false) => Ok(None),
+            Err(e) => Err(e),
+        };
         let produced = matches!(result, Ok(Some(_)));
         emit(out, interp, o, result)?;
         if produced {
             nout += 1;
         }
         if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
-            return Err(Stop::Done);
+            return Ok(()); // this file is done; rcalc goes on with the next
         }
     }
+}
+
+/// Records found by an `-i` format (rcalc.c `getrec`); `$N` is then an error.
+fn run_matched<'m>(
+    input: &mut dyn BufRead,
+    fields: &[Field],
+    interp: &mut Interpreter<'m>,
+    o: &'m Options,
+    out: &mut dyn Write,
+) -> Result<(), Stop> {
+    let mut text = Vec::new();
+    if input.read_to_end(&mut text).is_err() {
+        return Err(Stop::Failed);
+    }
+    let mut matcher = input_format::Matcher::new(
+        fields.to_vec(),
+        &text,
+        o.blanks_equal,
+        o.ignore_eol,
+        &o.strings,
+    );
+    let (mut nrecs, mut nout) = (0u64, 0u64);
+    while let Some(m) = {
+        let next = matcher.next_record();
+        if o.passive != Passive::Off && out.write_all(&matcher.skipped).is_err() {
+            return Err(Stop::Failed);
+        }
+        matcher.skipped.clear();
+        next
+    } {
+        nrecs += 1;
+        for (name, v) in &m.numbers {
+            interp.set_named(name, *v);
+        }
+        let mut no_columns = radc_lang::cal::eval::NoInput;
+        let result = match interp.begin_record(&mut no_columns) {
+            Ok(true) => produce(interp, o, &mut no_columns, Some(&m.strings)).map(Some),
+            Ok(false) => Ok(None),
+            Err(e) => Err(e),
+        };
+        let produced = matches!(result, Ok(Some(_)));
+        let rejected = matches!(result, Ok(None));
+        emit(out, interp, o, result)?;
+        if rejected && o.passive == Passive::AlsoRejected && out.write_all(&m.text).is_err() {
+            return Err(Stop::Failed);
+        }
+        nout += u64::from(produced);
+        if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
+            return Ok(()); // this file is done; rcalc goes on with the next
+        }
+    }
+    Ok(())
 }
 
 /// Binary input records are turned into blank-separated text with full precision, so
@@ -337,11 +535,52 @@ fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize) -> Option<String
     Some(text)
 }
 
+/// The output of an accepted record: the `$N` columns, or the `-o` format filled in
+/// (rcalc.c `putout`).
+fn produce<'m>(
+    interp: &mut Interpreter<'m>,
+    o: &'m Options,
+    input: &mut dyn radc_lang::cal::eval::Input,
+    record_strings: Option<&HashMap<String, String>>,
+) -> Result<Produced, radc_jit::Error> {
+    let Some((fields, exprs)) = &o.record_format else {
+        return interp.outputs_for(input).map(Produced::Columns);
+    };
+    let mut numbers = Vec::with_capacity(fields.len());
+    for e in exprs {
+        numbers.push(match e {
+            Some(e) => interp.eval(e, input)?,
+            None => 0.0,
+        });
+    }
+    let mut values = Vec::with_capacity(fields.len());
+    for (f, n) in fields.iter().zip(&numbers) {
+        values.push(match f {
+            Field::Literal(_) => Value::Literal,
+            Field::Number { .. } => Value::Number(*n),
+            Field::Text { name, .. } => match record_strings
+                .and_then(|r| r.get(name))
+                .or_else(|| o.strings.get(name))
+            {
+                Some(v) => Value::Text(v),
+                None => {
+                    return Err(radc_jit::Error::UndefinedString(name.clone()));
+                }
+            },
+        });
+    }
+    Ok(Produced::Text(format::render(
+        fields,
+        &values,
+        o.blanks_equal,
+    )))
+}
+
 fn emit(
     out: &mut dyn Write,
     interp: &mut Interpreter<'_>,
     o: &Options,
-    result: Result<Option<Outputs>, radc_jit::Error>,
+    result: Result<Option<Produced>, radc_jit::Error>,
 ) -> Result<(), Stop> {
     let warnings = interp.take_warnings();
     if !o.nowarn && !warnings.is_empty() {
@@ -351,10 +590,13 @@ fn emit(
         }
     }
     match result {
-        Ok(Some(values)) => {
-            let written = match o.otype {
-                Format::Ascii => out.write_all(format_outputs(&values, o.sep).as_bytes()),
-                binary => out.write_all(&binary_record(&values, binary)),
+        Ok(Some(produced)) => {
+            let written = match (produced, o.otype) {
+                (Produced::Text(t), _) => out.write_all(t.as_bytes()),
+                (Produced::Columns(v), Format::Ascii) => {
+                    out.write_all(format_outputs(&v, o.sep).as_bytes())
+                }
+                (Produced::Columns(v), binary) => out.write_all(&binary_record(&v, binary)),
             };
             if written.is_err() {
                 return Err(Stop::Failed);
