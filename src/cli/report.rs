@@ -66,8 +66,16 @@ fn print_to(
             }
         }
         Format::Human => {
+            // One line index per file for the whole run: building it per diagnostic
+            // made tens of thousands of diagnostics on a big file take hours.
+            let mut cache = ariadne::sources(
+                sources
+                    .files
+                    .iter()
+                    .map(|f| (f.name.clone(), f.text.clone())),
+            );
             for d in diags {
-                human(d, sources, color, out);
+                human(d, sources, color, &mut cache, out);
             }
         }
     }
@@ -112,7 +120,13 @@ fn label_json(l: &radc_lang::Label, sources: &Sources) -> serde_json::Value {
     })
 }
 
-fn human(d: &Diagnostic, sources: &Sources, color: bool, out: &mut impl Write) {
+fn human(
+    d: &Diagnostic,
+    sources: &Sources,
+    color: bool,
+    cache: &mut impl ariadne::Cache<String>,
+    out: &mut impl Write,
+) {
     let Some(src) = sources.get(d.span.file) else {
         let _ = writeln!(out, "{}[{}]: {}", severity_word(d), d.code.id, d.message);
         return;
@@ -144,7 +158,6 @@ fn human(d: &Diagnostic, sources: &Sources, color: bool, out: &mut impl Write) {
                 .with_message(d.code.name)
                 .with_color(main_color),
         );
-    let mut files = vec![(name.clone(), src.text.clone())];
     for l in &d.labels {
         let Some(other) = sources.get(l.span.file) else {
             continue;
@@ -156,14 +169,10 @@ fn human(d: &Diagnostic, sources: &Sources, color: bool, out: &mut impl Write) {
                 .with_message(&l.message)
                 .with_color(Color::Blue),
         );
-        if !files.iter().any(|(n, _)| *n == other.name) {
-            files.push((other.name.clone(), other.text.clone()));
-        }
     }
     if let Some(h) = &d.hint {
         report = report.with_help(h);
     }
-    let cache = ariadne::sources(files);
     if report.finish().write(cache, &mut *out).is_err() {
         let (line, col) = src.lines.line_col(&src.text, d.span.start as usize);
         let _ = writeln!(

@@ -56,7 +56,7 @@ codes! {
     W0305 = "W0305" "unknown-named-modifier" Warning: "An antimatter or illum names a modifier that is not defined before it; Radiance only warns.";
     W0306 = "W0306" "command-failed" Warning: "A '!' command failed (bad generator arguments, a missing file); Radiance warns and reads no output from it.";
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
-    W0302 = "W0302" "redefined-modifier" Warning: "A modifier name is defined again; later uses see the new one.";
+    W0302 = "W0302" "redefined-modifier" Warning: "A modifier is defined again before its earlier definition was ever used.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";
     // --- calcomp ---------------------------------------------------------------------
     E0501 = "E0501" "cal-syntax" Error: "The calcomp text does not follow the grammar Radiance's parser accepts.";

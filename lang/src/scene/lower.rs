@@ -89,6 +89,8 @@ pub fn lower_with(
         commands,
         deferred: Vec::new(),
         function_files: HashMap::new(),
+        missing_files: HashMap::new(),
+        more_users: HashMap::new(),
     };
     for input in inputs {
         cx.items(&input.syntax.items, input.warn_unused, 0);
@@ -116,6 +118,10 @@ struct Lowering<'a> {
     /// checked when a ray first hits them, sources when they are set up), by the index
     /// of the diagnostic. Judged once the whole scene is known.
     deferred: Vec<(Deferred, usize)>,
+    /// Missing auxiliary files already reported, with the index of their diagnostic.
+    missing_files: HashMap<String, usize>,
+    /// Further primitives sharing a deferred diagnostic (by its index) reported once.
+    more_users: HashMap<usize, Vec<PrimId>>,
     /// Function files loaded so far, by name as written (`None`: could not be loaded).
     function_files: HashMap<String, Option<FunctionFile>>,
 }
@@ -305,6 +311,11 @@ impl Lowering<'_> {
         if a.kind == b.kind && a.schema.name == b.schema.name && a.modifier == b.modifier {
             return true;
         }
+        // Define, use, redefine is an idiom (gensurf -s writes a new `Phong` texture
+        // before each polygon); only a definition replaced before any use is suspect.
+        if self.used.contains(&old) {
+            return false;
+        }
         let old_span = a.span;
         self.diags.push(
             Diagnostic::new(
@@ -313,8 +324,10 @@ impl Lowering<'_> {
                 format!("modifier '{}' is defined again", name.text),
             )
             .with_label(old_span, "earlier definition")
-            .with_hint("primitives above this line keep using the earlier definition"),
+            .with_hint("the earlier definition was never used; remove it or rename one of them"),
         );
+        // Said here; not again as "never used".
+        self.used.insert(old);
         false
     }
 
@@ -609,7 +622,15 @@ impl Lowering<'_> {
                 );
                 continue;
             }
+            if let Some(&first) = self.missing_files.get(&w.text) {
+                // Reported once per file name (a generator's output can name the same
+                // function file thousands of times); this primitive is one more user.
+                let me = PrimId(self.scene.prims.len() as u32);
+                self.more_users.entry(first).or_default().push(me);
+                continue;
+            }
             if !self.files.exists(&w.text, kind, w.span.file) {
+                self.missing_files.insert(w.text.clone(), self.diags.len());
                 self.diags.push(
                     Diagnostic::new(codes::E0305, w.span, format!("file '{}' not found", w.text))
                         .with_hint(
@@ -869,7 +890,12 @@ impl Lowering<'_> {
         for (condition, index) in std::mem::take(&mut self.deferred) {
             let (id, why) = match condition {
                 Deferred::IfUsed(id) => {
-                    if reachable.get(id.0 as usize).copied().unwrap_or(true) {
+                    let users = std::iter::once(id)
+                        .chain(self.more_users.get(&index).into_iter().flatten().copied());
+                    if users
+                        .into_iter()
+                        .any(|u| reachable.get(u.0 as usize).copied().unwrap_or(true))
+                    {
                         continue;
                     }
                     (id, "nothing uses it, so Radiance never reads it")
@@ -1386,7 +1412,8 @@ mod tests {
              void metal paint 0 0 5 .5 .5 .5 .9 0\npaint sphere b 0 0 4 0 0 0 1\n"
         );
         let (scene, codes) = check(&text);
-        assert_eq!(codes, vec!["W0302"]);
+        // Define, use, redefine is an idiom: no warning.
+        assert!(codes.is_empty(), "{codes:?}");
         let kind_of_modifier = |name: &str| {
             let p = scene.prims.iter().find(|p| p.name == name).unwrap();
             let ModRef::Prim(m) = p.modifier else {
@@ -1396,6 +1423,13 @@ mod tests {
         };
         assert_eq!(kind_of_modifier("a"), "plastic");
         assert_eq!(kind_of_modifier("b"), "metal");
+    }
+
+    #[test]
+    fn a_definition_replaced_before_any_use_is_warned_once() {
+        let text =
+            format!("{PAINT}void metal paint 0 0 5 .5 .5 .5 .9 0\npaint sphere b 0 0 4 0 0 0 1\n");
+        assert_eq!(check(&text).1, vec!["W0302"]);
     }
 
     #[test]
