@@ -155,8 +155,19 @@ fn oracle_library() -> Option<PathBuf> {
 }
 
 fn run_radc(args: &[String], stdin_rows: &[String], raypath: &str) -> Outcome {
+    run_radc_with(&[], args, stdin_rows, raypath)
+}
+
+/// `engine` is inserted before the case's own options (`--interp` or nothing).
+fn run_radc_with(
+    engine: &[&str],
+    args: &[String],
+    stdin_rows: &[String],
+    raypath: &str,
+) -> Outcome {
     let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
         .arg("calc")
+        .args(engine)
         .args(args)
         .current_dir(data_dir())
         .env("RAYPATH", raypath)
@@ -289,7 +300,7 @@ fn calc_is_missing() -> bool {
     outcome.status.and_then(|s| s.code()) == Some(2) && outcome.stderr.contains("unknown command")
 }
 
-fn run_set(name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
+fn run_set(engine: &[&str], name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
     let dir = data_dir();
     let read = |file: &str| {
         std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("reading {file}: {e}"))
@@ -306,10 +317,10 @@ fn run_set(name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
         "{name}.golden is stale: run tests/oracle/regen_calc_goldens.py"
     );
     for (case, (_, golden)) in cases.iter().zip(&goldens) {
-        let outcome = run_radc(&case.args, &case.stdin_rows, raypath);
+        let outcome = run_radc_with(engine, &case.args, &case.stdin_rows, raypath);
         if let Some(problem) = compare(golden, &outcome) {
             failures.push(format!(
-                "[{name}/{}] radc calc {:?}: {problem}",
+                "[{name}/{}] radc calc {engine:?} {:?}: {problem}",
                 case.id, case.args
             ));
         }
@@ -317,8 +328,19 @@ fn run_set(name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
     cases.len()
 }
 
+/// The default engine: the Cranelift JIT.
 #[test]
 fn radc_calc_matches_rcalc() {
+    matches_rcalc(&[]);
+}
+
+/// The reference interpreter, which the JIT must agree with.
+#[test]
+fn radc_calc_interp_matches_rcalc() {
+    matches_rcalc(&["--interp"]);
+}
+
+fn matches_rcalc(engine: &[&str]) {
     if calc_is_missing() {
         eprintln!(
             "notice: `radc calc` is not implemented yet; skipping the rcalc differential test"
@@ -331,9 +353,9 @@ fn radc_calc_matches_rcalc() {
         None => ".".to_string(),
     };
     let mut failures = Vec::new();
-    let mut total = run_set("expressions", &raypath, &mut failures);
+    let mut total = run_set(engine, "expressions", &raypath, &mut failures);
     if library.is_some() {
-        total += run_set("library", &raypath, &mut failures);
+        total += run_set(engine, "library", &raypath, &mut failures);
     } else {
         eprintln!(
             "notice: no .oracle/ Radiance library found; skipping the library cases \
@@ -382,4 +404,64 @@ fn numeric_fields_compare_with_tolerance() {
     assert_eq!(stdout_difference("1\t2\n", "1\t2\n"), None);
     assert!(stdout_difference("1\t2\n", "1\t2").is_some());
     assert!(stdout_difference("1\t\t3\n", "1\t0\t3\n").is_some());
+}
+
+/// Every corpus case gives the same exit status, stdout and stderr under the JIT as
+/// under the reference interpreter, whether or not both match rcalc. Cases where the
+/// interpreter itself crashed (its native stack overflowed) are only counted.
+#[test]
+fn jit_matches_interpreter_on_corpus() {
+    if calc_is_missing() {
+        return;
+    }
+    let library = oracle_library();
+    let raypath = match &library {
+        Some(lib) => format!(".:{}", lib.display()),
+        None => ".".to_string(),
+    };
+    let mut sets = vec!["expressions"];
+    if library.is_some() {
+        sets.push("library");
+    }
+    let mut failures = Vec::new();
+    let mut crashed = 0;
+    let mut total = 0;
+    for name in sets {
+        let file = format!("{name}.txt");
+        let text = std::fs::read_to_string(data_dir().join(&file)).expect("case file");
+        for case in parse_cases(&text, &file) {
+            total += 1;
+            let interp = run_radc_with(&["--interp"], &case.args, &case.stdin_rows, &raypath);
+            let jit = run_radc_with(&[], &case.args, &case.stdin_rows, &raypath);
+            if interp.status.is_some_and(|s| s.code().is_none()) {
+                crashed += 1;
+                continue;
+            }
+            let same = interp.status.map(|s| s.code()) == jit.status.map(|s| s.code())
+                && interp.stdout == jit.stdout
+                && interp.stderr == jit.stderr;
+            if !same {
+                failures.push(format!(
+                    "[{name}/{}] {:?}: interpreter {:?} {:?} {:?}, JIT {:?} {:?} {:?}",
+                    case.id,
+                    case.args,
+                    interp.status,
+                    interp.stdout,
+                    interp.stderr,
+                    jit.status,
+                    jit.stdout,
+                    jit.stderr
+                ));
+            }
+        }
+    }
+    if crashed > 0 {
+        eprintln!("notice: the interpreter crashed on {crashed} case(s); not compared");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {total} cases differ between the JIT and the interpreter:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

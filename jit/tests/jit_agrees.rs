@@ -148,7 +148,10 @@ fn variables_are_cached_per_record() {
 
 #[test]
 fn cond_filters() {
-    agree("cond=$1-1; $1=$1; $2=recno; $3=outno", &["1", "2", "0", "3"]);
+    agree(
+        "cond=$1-1; $1=$1; $2=recno; $3=outno",
+        &["1", "2", "0", "3"],
+    );
 }
 
 #[test]
@@ -207,7 +210,10 @@ fn fatal_errors() {
 
 #[test]
 fn input_columns() {
-    agree("$1=in(0);$2=in(2);$3=$3;$4=in(-1)", &["1 2 3", "4\t5\t6", ""]);
+    agree(
+        "$1=in(0);$2=in(2);$3=$3;$4=in(-1)",
+        &["1 2 3", "4\t5\t6", ""],
+    );
     agree("$1=$40+$2", &["1\t2"]);
 }
 

@@ -2,9 +2,13 @@
 //! (`-e -f -n -s -t -w -u -i{a,d,f} -o{a,d,f} -in -on`, file arguments).
 //! Syntax and resolution errors are diagnostics (exit 1); runtime warnings use rcalc's
 //! own words on stderr; bad options exit 2.
+//! Records are evaluated by the Cranelift JIT; `--interp` selects the reference
+//! interpreter (the JIT also falls back to it, with a note, for programs it declines).
 
 use super::USAGE_ERROR;
+use radc_jit::compile::StartError;
 use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs};
+use radc_jit::{JitProgram, RecordEngine};
 use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::{Env, Host, Module};
 use radc_lang::{Diagnostic, FileId};
@@ -12,7 +16,7 @@ use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: radc calc [-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
+const USAGE: &str = "usage: radc calc [--interp][-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
 
 /// Binary or text records (rcalc's `-id`, `-if`, `-od`, `-of`).
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -33,6 +37,8 @@ struct Options {
     in_limit: u64,
     out_limit: u64,
     files: Vec<String>,
+    /// Evaluate with the reference interpreter instead of the JIT.
+    interp: bool,
 }
 
 /// The texts compiled so far, by `FileId`, for rendering diagnostics.
@@ -63,6 +69,7 @@ pub fn run(args: &[String]) -> ExitCode {
         in_limit: 0,
         out_limit: 0,
         files: Vec::new(),
+        interp: false,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -78,6 +85,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 o.noinput = true;
                 module.set_folding(false);
             }
+            "--interp" => o.interp = true,
             "-w" => o.nowarn = !o.nowarn,
             "-u" => o.unbuffered = !o.unbuffered,
             "-b" | "-l" => {}
@@ -219,30 +227,54 @@ fn find_on_raypath(name: &str) -> Option<PathBuf> {
         .find(|c| c.is_file())
 }
 
+/// Native stack the JIT's code may use on the evaluation thread (of 512 MiB).
+const JIT_STACK_BUDGET: usize = 256 << 20;
+
+/// The JIT unless `--interp` asks for the interpreter or the JIT declines the program.
+fn engine<'m>(module: &'m Module, o: &Options) -> Result<Box<dyn RecordEngine + 'm>, String> {
+    if !o.interp {
+        match JitProgram::new(module, MathErrors::default()) {
+            Ok(mut jit) => {
+                jit.set_stack_budget(JIT_STACK_BUDGET);
+                return Ok(Box::new(jit));
+            }
+            Err(StartError::Program(e)) => return Err(e.to_string()),
+            Err(StartError::Jit(e)) => {
+                eprintln!("radc calc: note: {e}; using the interpreter");
+            }
+        }
+    }
+    match Interpreter::new(module, MathErrors::default()) {
+        Ok(i) => Ok(Box::new(i)),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 fn execute(module: &Module, o: &Options) -> ExitCode {
-    let mut interp = match Interpreter::new(module, MathErrors::default()) {
-        Ok(i) => i,
+    let mut engine = match engine(module, o) {
+        Ok(e) => e,
         Err(e) => {
             eprintln!("{e}");
             return ExitCode::FAILURE;
         }
     };
+    let interp = engine.as_mut();
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     let status = if o.noinput {
         let r = interp.single().map(Some);
-        emit(&mut out, &mut interp, o, r)
+        emit(&mut out, interp, o, r)
     } else if o.files.is_empty() {
         let stdin = std::io::stdin();
         let mut input = stdin.lock();
-        run_stream(&mut input, &mut interp, o, &mut out)
+        run_stream(&mut input, interp, o, &mut out)
     } else {
         let mut status = Ok(());
         for f in &o.files {
             match std::fs::File::open(f) {
                 Ok(file) => {
                     let mut input = std::io::BufReader::new(file);
-                    status = run_stream(&mut input, &mut interp, o, &mut out);
+                    status = run_stream(&mut input, interp, o, &mut out);
                 }
                 Err(e) => {
                     let _ = out.flush();
@@ -273,7 +305,7 @@ enum Stop {
 
 fn run_stream(
     input: &mut dyn BufRead,
-    interp: &mut Interpreter<'_>,
+    interp: &mut dyn RecordEngine,
     o: &Options,
     out: &mut dyn Write,
 ) -> Result<(), Stop> {
@@ -339,7 +371,7 @@ fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize) -> Option<String
 
 fn emit(
     out: &mut dyn Write,
-    interp: &mut Interpreter<'_>,
+    interp: &mut dyn RecordEngine,
     o: &Options,
     result: Result<Option<Outputs>, radc_jit::Error>,
 ) -> Result<(), Stop> {

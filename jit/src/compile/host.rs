@@ -261,9 +261,7 @@ fn lib_call(raw: &mut Raw, block: *mut Block, sym: u32) -> f64 {
     raw.errno = ERRNO_NONE;
     let d = match lib {
         Some(LibFn::Builtin(b)) => builtin(raw, block, sym, b),
-        Some(LibFn::In) => {
-            block_arg(raw, block, 1, sym).map(|x| h_in(raw as *mut Raw, x))
-        }
+        Some(LibFn::In) => block_arg(raw, block, 1, sym).map(|x| h_in(raw as *mut Raw, x)),
         Some(LibFn::Renderer(r)) => {
             raw.fail(EvalError::NotAvailable(r.name.to_string()));
             None
@@ -329,7 +327,11 @@ fn builtin(raw: &mut Raw, block: *mut Block, sym: u32, b: Builtin) -> Option<f64
             while n > 1 {
                 let v = arg(raw, n)?;
                 n -= 1;
-                let keep = if b == Builtin::Max { best > v } else { best < v };
+                let keep = if b == Builtin::Max {
+                    best > v
+                } else {
+                    best < v
+                };
                 if !keep {
                     best = v;
                 }

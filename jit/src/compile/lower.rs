@@ -100,8 +100,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     // ---- small helpers ------------------------------------------------------------
 
     fn owner_sym(&self) -> u32 {
-        self.owner
-            .map_or(NO_SYM, |d| self.st.module.def(d).sym.0)
+        self.owner.map_or(NO_SYM, |d| self.st.module.def(d).sym.0)
     }
 
     fn f64c(&mut self, v: f64) -> Value {
@@ -515,25 +514,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .b
             .ins()
             .load(self.st.ptr, mem(), block, off + OFF_SLOT_THUNK);
-        let parent = self
-            .b
-            .ins()
-            .load(self.st.ptr, mem(), block, OFF_PARENT);
+        let parent = self.b.ins().load(self.st.ptr, mem(), block, OFF_PARENT);
         let sig = self.uniform_sig();
-        let inst = self
-            .b
-            .ins()
-            .call_indirect(sig, thunk, &[self.raw, parent]);
+        let inst = self.b.ins().call_indirect(sig, thunk, &[self.raw, parent]);
         let v = self.b.inst_results(inst)[0];
         self.add_depth(1);
         self.check_failed();
-        self.b
-            .ins()
-            .store(mem(), v, block, off + OFF_SLOT_VALUE);
+        self.b.ins().store(mem(), v, block, off + OFF_SLOT_VALUE);
         let one = self.i64c(1);
-        self.b
-            .ins()
-            .store(mem(), one, block, off + OFF_SLOT_STATE);
+        self.b.ins().store(mem(), one, block, off + OFF_SLOT_STATE);
         self.jump_with(j, v);
         self.b.switch_to_block(j);
         out
@@ -619,10 +608,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.ins().brif(fp, direct, &[], via_host, &[]);
         self.b.switch_to_block(direct);
         let sig = self.uniform_sig();
-        let inst = self
-            .b
-            .ins()
-            .call_indirect(sig, fp, &[self.raw, new_block]);
+        let inst = self.b.ins().call_indirect(sig, fp, &[self.raw, new_block]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
         self.jump_with(j, v);
@@ -639,9 +625,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// argument as a function value.
     fn build_block(&mut self, args: &'m [Expr], callee: CalleeName, fill: bool) -> R<Value> {
         let size = (BLOCK_SIZE + args.len() as i32 * SLOT_SIZE) as u32;
-        let ss = self
-            .b
-            .create_sized_stack_slot(StackSlotData::new(StackSlotKind::ExplicitSlot, size, 3));
+        let ss = self.b.create_sized_stack_slot(StackSlotData::new(
+            StackSlotKind::ExplicitSlot,
+            size,
+            3,
+        ));
         let base = self.b.ins().stack_addr(self.st.ptr, ss, 0);
         let parent = match self.block {
             Some(b) => b,
@@ -669,7 +657,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             if fill {
                 let (fp, code) = self.fn_value(a, callee, &mut not_function)?;
                 self.b.ins().store(mem(), fp, base, off + OFF_SLOT_FN_PTR);
-                self.b.ins().store(mem(), code, base, off + OFF_SLOT_FN_CODE);
+                self.b
+                    .ins()
+                    .store(mem(), code, base, off + OFF_SLOT_FN_CODE);
             }
         }
         Ok(base)

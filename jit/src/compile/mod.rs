@@ -25,7 +25,7 @@ mod layout;
 mod lower;
 mod program;
 
-pub use program::JitProgram;
+pub use program::{JitProgram, StartError};
 
 use codegen::{EntryBody, Job, State};
 use cranelift_jit::JITModule;
