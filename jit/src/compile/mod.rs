@@ -327,7 +327,7 @@ impl Compiled {
                 "a context made for another compiled program".into(),
             ));
         }
-        Ok(self.run(code, args, ctx, input)?)
+        self.run(code, args, ctx, input)
     }
 
     fn run(

@@ -109,10 +109,10 @@ impl JitProgram {
             self.ctx.set_host(k, (self.nout + 1) as f64);
         }
         self.ctx.next_record();
-        if let Some(c) = self.cond {
-            if self.compiled.eval(c, &mut self.ctx, record)? <= 0.0 {
-                return Ok(None);
-            }
+        if let Some(c) = self.cond
+            && self.compiled.eval(c, &mut self.ctx, record)? <= 0.0
+        {
+            return Ok(None);
         }
         let out = self.outputs(record)?;
         self.nout += 1;
