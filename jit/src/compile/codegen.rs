@@ -63,6 +63,8 @@ pub struct State<'m> {
     pub cache_init: Vec<Cached>,
     /// Definitions whose arguments may be called or passed on as functions.
     pub uses_fn_values: HashMap<DefId, bool>,
+    /// Thunks of simple arguments, by context and (kind, number).
+    pub thunks: HashMap<(Option<DefId>, (u8, u32)), FuncId>,
     pub queue: Vec<Job<'m>>,
 }
 
@@ -147,6 +149,7 @@ impl<'m> State<'m> {
             host_vars: HashMap::new(),
             cache_init: Vec::new(),
             uses_fn_values: HashMap::new(),
+            thunks: HashMap::new(),
             queue: Vec::new(),
         })
     }
@@ -189,11 +192,27 @@ impl<'m> State<'m> {
     }
 
     pub fn thunk(&mut self, expr: &'m Expr, owner: Option<DefId>) -> Result<FuncId, JitError> {
+        // One thunk serves every call argument that is the same column, variable or
+        // parameter in the same context: fewer functions to compile.
+        let key = match expr.node {
+            Node::Chan(n) => Some((0u8, n)),
+            Node::Var(s) => Some((1, s.0)),
+            Node::Arg(n) => Some((2, n)),
+            _ => None,
+        };
+        if let Some(k) = key
+            && let Some(&id) = self.thunks.get(&(owner, k))
+        {
+            return Ok(id);
+        }
         let id = self
             .jit
             .declare_anonymous_function(&self.sig_uniform)
             .map_err(|e| JitError::Backend(e.to_string()))?;
         self.queue.push(Job::Thunk { id, expr, owner });
+        if let Some(k) = key {
+            self.thunks.insert((owner, k), id);
+        }
         Ok(id)
     }
 
@@ -207,8 +226,17 @@ impl<'m> State<'m> {
         let mut stack = vec![&self.module.def(def).body];
         while let Some(e) = stack.pop() {
             if let Node::Call { callee, args } = &e.node {
+                // Library calls are inlined and never see function values; a user
+                // function may be handed a parameter and call it.
+                let user = match callee {
+                    Callee::Arg(_) => true,
+                    Callee::Sym(s) => self
+                        .module
+                        .current_def(*s)
+                        .is_some_and(|d| self.module.def(d).is_function()),
+                };
                 uses |= matches!(callee, Callee::Arg(_))
-                    || args.iter().any(|a| matches!(a.node, Node::Arg(_)));
+                    || (user && args.iter().any(|a| matches!(a.node, Node::Arg(_))));
             }
             stack.extend(e.children());
         }
