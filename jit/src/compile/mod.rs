@@ -113,6 +113,15 @@ impl Jit {
     /// Compile what `entries` reach. An entry is a variable or function name as
     /// written, or `$N` for output column N.
     pub fn compile(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
+        // A Cranelift panic is a bug to report, but never a reason to fail the
+        // program: the caller falls back to the interpreter.
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.compile_unguarded(module, entries)
+        }))
+        .unwrap_or_else(|_| Err(JitError::Backend("code generator panicked".into())))
+    }
+
+    fn compile_unguarded(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
         let mut plans = Vec::new();
         let mut roots = Vec::new();
         let mut syms = Vec::new();
