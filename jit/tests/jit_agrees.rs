@@ -179,6 +179,11 @@ fn errno_timing_follows_call_by_need() {
         "f(x)=sqrt(x*0+4); g(x)=max(x,1); h(x,y)=x+sqrt(y); $1=f(1/$1); $2=g(1/$1); $3=h(1/$1,4)",
         &["0", "1"],
     );
+    // An input column that overflows sets ERANGE when the callee reads it.
+    agree(
+        "f(x)=sqrt(x); g(x,y)=max(y,x); $1=f($1); $2=g($1,$2); $3=f($2)+in(1)",
+        &["1e999\t2", "4\t-1e999"],
+    );
 }
 
 #[test]

@@ -115,6 +115,9 @@ fn input_value() -> impl Strategy<Value = String> {
         Just("2.5".to_string()),
         Just("1e300".to_string()),
         Just("nan".to_string()),
+        // Overflows: C's atof sets ERANGE, which a library call around it reports.
+        Just("1e999".to_string()),
+        Just("12abc".to_string()),
         (-1000.0f64..1000.0).prop_map(|v| v.to_string()),
     ]
 }

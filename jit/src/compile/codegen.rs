@@ -53,6 +53,8 @@ pub struct State<'m> {
     pub ptr: ir::Type,
     pub sig_var: Signature,
     pub sig_uniform: Signature,
+    /// Thunks: `(ctx, caller's block, slot) -> f64`.
+    pub sig_thunk: Signature,
     pub policy: MathErrors,
     pub warn_nonconstant: bool,
     pub imports: HashMap<&'static str, FuncId>,
@@ -104,6 +106,7 @@ impl<'m> State<'m> {
         };
         let sig_var = sig(&[ptr], Some(types::F64));
         let sig_uniform = sig(&[ptr, ptr], Some(types::F64));
+        let sig_thunk = sig(&[ptr, ptr, ptr], Some(types::F64));
         let f64_1 = sig(&[types::F64], Some(types::F64));
         let imports_sigs: Vec<(&'static str, Signature)> = vec![
             ("radc_pow", sig(&[types::F64, types::F64], Some(types::F64))),
@@ -127,6 +130,7 @@ impl<'m> State<'m> {
             ("radc_chan", sig(&[ptr, types::I32], Some(types::F64))),
             ("radc_in", sig(&[ptr, types::F64], Some(types::F64))),
             ("radc_fnval", sig(&[ptr, ptr, types::I64], Some(types::F64))),
+            ("radc_chan_thunk", sig_thunk.clone()),
         ];
         let mut imports = HashMap::new();
         for (name, s) in imports_sigs {
@@ -141,6 +145,7 @@ impl<'m> State<'m> {
             ptr,
             sig_var,
             sig_uniform,
+            sig_thunk,
             policy,
             warn_nonconstant: module.folds(),
             imports,
@@ -195,8 +200,7 @@ impl<'m> State<'m> {
         // One thunk serves every call argument that is the same column, variable or
         // parameter in the same context: fewer functions to compile.
         let key = match expr.node {
-            Node::Chan(n) => Some((0u8, n)),
-            Node::Var(s) => Some((1, s.0)),
+            Node::Var(s) => Some((1u8, s.0)),
             Node::Arg(n) => Some((2, n)),
             _ => None,
         };
@@ -207,7 +211,7 @@ impl<'m> State<'m> {
         }
         let id = self
             .jit
-            .declare_anonymous_function(&self.sig_uniform)
+            .declare_anonymous_function(&self.sig_thunk)
             .map_err(|e| JitError::Backend(e.to_string()))?;
         self.queue.push(Job::Thunk { id, expr, owner });
         if let Some(k) = key {
@@ -285,7 +289,7 @@ pub fn drain(state: &mut State<'_>) -> Result<(), JitError> {
         let (id, sig) = match &job {
             Job::Var(d) => (state.var_fns[d].0, state.sig_var.clone()),
             Job::Func(d) => (state.user_fns[d], state.sig_uniform.clone()),
-            Job::Thunk { id, .. } => (*id, state.sig_uniform.clone()),
+            Job::Thunk { id, .. } => (*id, state.sig_thunk.clone()),
             Job::Entry { id, .. } => (*id, state.sig_var.clone()),
         };
         ctx.func = Function::with_name_signature(UserFuncName::user(0, id.as_u32()), sig);

@@ -31,6 +31,7 @@ pub fn symbols() -> Vec<(&'static str, *const u8)> {
         ("radc_chan", h_chan as *const u8),
         ("radc_in", h_in as *const u8),
         ("radc_fnval", h_fnval as *const u8),
+        ("radc_chan_thunk", h_chan_thunk as *const u8),
     ]
 }
 
@@ -130,6 +131,14 @@ fn depth_event(raw: &mut Raw, sym: u32, depth: u64) {
 
 extern "C" fn h_chan(raw: *mut Raw, n: u32) -> f64 {
     channel(raw_mut(raw), n)
+}
+
+/// The thunk of every argument `$N` (N in the slot's `aux`): one host function
+/// instead of a compiled thunk per call site.
+extern "C" fn h_chan_thunk(raw: *mut Raw, _parent: *mut Block, slot: *mut Slot) -> f64 {
+    // SAFETY: generated code passes the slot it is evaluating, in a live block.
+    let n = unsafe { (*slot).aux };
+    channel(raw_mut(raw), u32::try_from(n).unwrap_or(0))
 }
 
 fn channel(raw: &mut Raw, n: u32) -> f64 {
@@ -244,7 +253,7 @@ fn block_arg(raw: &mut Raw, block: *mut Block, n: u64, sym: u32) -> Option<f64> 
     // SAFETY: `thunk` is a compiled thunk of the live module with the thunk ABI; it
     // receives the same context pointer and its own block's parent, as generated
     // code would pass them.
-    let v = unsafe { thunk(raw as *mut Raw, parent) };
+    let v = unsafe { thunk(raw as *mut Raw, parent, slot as *mut Slot) };
     raw.depth += 1;
     if raw.failed != 0 {
         return None;

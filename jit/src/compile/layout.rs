@@ -93,8 +93,9 @@ impl Raw {
 }
 
 /// A thunk: evaluates one argument expression of a call in the caller's context (the
-/// block it is given is the caller's own argument block).
-pub type ThunkFn = unsafe extern "C" fn(*mut Raw, *mut Block) -> f64;
+/// block it is given is the caller's own argument block; the slot is the argument's,
+/// for thunks shared by many arguments, which read `aux`).
+pub type ThunkFn = unsafe extern "C" fn(*mut Raw, *mut Block, *mut Slot) -> f64;
 
 /// The head of a call's argument block, followed in memory by `nargs` [`Slot`]s. It
 /// lives in the caller's stack frame for the duration of the call: calcomp arguments
@@ -118,6 +119,8 @@ pub struct Slot {
     pub fn_ptr: *const u8,
     /// `(symbol << 3) | FN_*`.
     pub fn_code: u64,
+    /// For a shared thunk: the input column an argument `$N` reads.
+    pub aux: u64,
 }
 
 pub const BLOCK_SIZE: i32 = std::mem::size_of::<Block>() as i32;
@@ -129,6 +132,7 @@ pub const OFF_SLOT_STATE: i32 = offset_of!(Slot, state) as i32;
 pub const OFF_SLOT_THUNK: i32 = offset_of!(Slot, thunk) as i32;
 pub const OFF_SLOT_FN_PTR: i32 = offset_of!(Slot, fn_ptr) as i32;
 pub const OFF_SLOT_FN_CODE: i32 = offset_of!(Slot, fn_code) as i32;
+pub const OFF_SLOT_AUX: i32 = offset_of!(Slot, aux) as i32;
 
 /// Function-value kinds (low 3 bits of `Slot::fn_code`).
 pub const FN_USER: u64 = 0;

@@ -39,6 +39,7 @@ pub struct Lower<'a, 'b, 'm> {
     owner: Option<DefId>,
     refs: HashMap<FuncId, FuncRef>,
     uniform: Option<SigRef>,
+    thunk_sig: Option<SigRef>,
     abort: Option<ir::Block>,
 }
 
@@ -70,6 +71,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             owner,
             refs: HashMap::new(),
             uniform: None,
+            thunk_sig: None,
             abort: None,
         };
         let v = match job {
@@ -155,6 +157,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let s = self.b.import_signature(self.st.sig_uniform.clone());
         self.uniform = Some(s);
+        s
+    }
+
+    fn thunk_sig(&mut self) -> SigRef {
+        if let Some(s) = self.thunk_sig {
+            return s;
+        }
+        let s = self.b.import_signature(self.st.sig_thunk.clone());
+        self.thunk_sig = Some(s);
         s
     }
 
@@ -513,8 +524,12 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .ins()
             .load(self.st.ptr, mem(), block, off + OFF_SLOT_THUNK);
         let parent = self.b.ins().load(self.st.ptr, mem(), block, OFF_PARENT);
-        let sig = self.uniform_sig();
-        let inst = self.b.ins().call_indirect(sig, thunk, &[self.raw, parent]);
+        let sig = self.thunk_sig();
+        let slot = self.b.ins().iadd_imm_s(block, i64::from(off));
+        let inst = self
+            .b
+            .ins()
+            .call_indirect(sig, thunk, &[self.raw, parent, slot]);
         let v = self.b.inst_results(inst)[0];
         self.add_depth(1);
         self.check_failed();
@@ -644,6 +659,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 self.b.ins().store(mem(), v, base, off + OFF_SLOT_VALUE);
                 let one = self.i64c(1);
                 self.b.ins().store(mem(), one, base, off + OFF_SLOT_STATE);
+            } else if let Node::Chan(n @ 1..) = a.node {
+                let zero = self.i64c(0);
+                self.b.ins().store(mem(), zero, base, off + OFF_SLOT_STATE);
+                let id = self.st.imports["radc_chan_thunk"];
+                let fr = self.func_ref(id);
+                let addr = self.b.ins().func_addr(self.st.ptr, fr);
+                self.b.ins().store(mem(), addr, base, off + OFF_SLOT_THUNK);
+                let n = self.i64c(u64::from(n));
+                self.b.ins().store(mem(), n, base, off + OFF_SLOT_AUX);
             } else {
                 let zero = self.i64c(0);
                 self.b.ins().store(mem(), zero, base, off + OFF_SLOT_STATE);

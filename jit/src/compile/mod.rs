@@ -409,7 +409,7 @@ fn host_block(args: &[f64]) -> Vec<u64> {
 
 const _: () = {
     assert!(std::mem::size_of::<Block>() == 16);
-    assert!(std::mem::size_of::<Slot>() == 40);
+    assert!(std::mem::size_of::<Slot>() == 48);
     assert!(std::mem::offset_of!(Slot, value) == 0);
     assert!(std::mem::offset_of!(Slot, state) == 8);
     assert!(std::mem::offset_of!(Slot, fn_code) == 32);
