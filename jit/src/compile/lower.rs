@@ -40,6 +40,9 @@ pub struct Lower<'a, 'b, 'm> {
     refs: HashMap<FuncId, FuncRef>,
     uniform: Option<SigRef>,
     thunk_sig: Option<SigRef>,
+    /// Parameters already computed on every path to the current point: a slot's
+    /// value never changes once computed, so later uses reuse it.
+    known_args: HashMap<u32, Value>,
     abort: Option<ir::Block>,
 }
 
@@ -72,6 +75,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             refs: HashMap::new(),
             uniform: None,
             thunk_sig: None,
+            known_args: HashMap::new(),
             abort: None,
         };
         let v = match job {
@@ -405,7 +409,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let zero = self.f64c(0.0);
         self.jump_with(j, zero);
         self.b.switch_to_block(nz);
+        let known = self.known_args.clone();
         let num = self.expr(a)?;
+        self.known_args = known;
         let q = self.b.ins().fdiv(num, den);
         self.jump_with(j, q);
         self.b.switch_to_block(j);
@@ -497,6 +503,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// calfunc.c `argument`: parameter `n`, computed once per call in the caller's
     /// context (one level less deep).
     fn argument(&mut self, n: u32) -> Value {
+        if let Some(&v) = self.known_args.get(&n) {
+            return v;
+        }
+        let v = self.compute_argument(n);
+        self.known_args.insert(n, v);
+        v
+    }
+
+    fn compute_argument(&mut self, n: u32) -> Value {
         let Some(block) = self.block else {
             return self.fail(E_TOO_FEW, NO_SYM);
         };
@@ -830,12 +845,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 let yes = self.b.create_block();
                 let no = self.b.create_block();
                 self.b.ins().brif(gt, yes, &[], no, &[]);
+                let known = self.known_args.clone();
                 self.b.switch_to_block(yes);
                 let v = self.lib_arg(args, 1, sym)?;
                 self.jump_with(j, v);
+                self.known_args = known.clone();
                 self.b.switch_to_block(no);
                 let v = self.lib_arg(args, 2, sym)?;
                 self.jump_with(j, v);
+                self.known_args = known;
                 self.b.switch_to_block(j);
                 out
             }
@@ -926,12 +944,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn select_case(&mut self, args: &'m [Expr], k: usize, sym: u32, j: ir::Block) -> R<()> {
+        let known = self.known_args.clone();
         let v = if k == 0 {
             self.f64c((args.len() - 1) as f64)
         } else {
             self.lib_arg(args, k, sym)?
         };
         self.jump_with(j, v);
+        self.known_args = known;
         Ok(())
     }
 }
