@@ -40,9 +40,10 @@ pub struct Lower<'a, 'b, 'm> {
     refs: HashMap<FuncId, FuncRef>,
     uniform: Option<SigRef>,
     thunk_sig: Option<SigRef>,
-    /// Parameters already computed on every path to the current point: a slot's
-    /// value never changes once computed, so later uses reuse it.
-    known_args: HashMap<u32, Value>,
+    /// Parameters (`(0, n)`) and variables (`(1, def)`) already computed on every
+    /// path to the current point: a slot's value never changes once computed, and a
+    /// variable's cached value not within a record, so later uses reuse them.
+    known_args: HashMap<(u8, u32), Value>,
     abort: Option<ir::Block>,
 }
 
@@ -478,11 +479,22 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let (fid, idx) = self.st.var_fn(def)?;
         let f = self.func_ref(fid);
         if is_constant(module, def) && self.st.warn_nonconstant {
+            // Every read warns: nothing to reuse.
             let inst = self.b.ins().call(f, &[self.raw]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
             return Ok(v);
         }
+        if let Some(&v) = self.known_args.get(&(1, def.0)) {
+            return Ok(v);
+        }
+        let v = self.cached_variable(def, f, idx);
+        self.known_args.insert((1, def.0), v);
+        Ok(v)
+    }
+
+    /// The inline freshness test, calling the variable's function on a miss.
+    fn cached_variable(&mut self, def: DefId, f: FuncRef, idx: u32) -> Value {
         let fresh = self.fresh(def, idx);
         let (j, out) = self.join();
         let hit = self.b.create_block();
@@ -497,17 +509,17 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.check_failed();
         self.jump_with(j, v);
         self.b.switch_to_block(j);
-        Ok(out)
+        out
     }
 
     /// calfunc.c `argument`: parameter `n`, computed once per call in the caller's
     /// context (one level less deep).
     fn argument(&mut self, n: u32) -> Value {
-        if let Some(&v) = self.known_args.get(&n) {
+        if let Some(&v) = self.known_args.get(&(0, n)) {
             return v;
         }
         let v = self.compute_argument(n);
-        self.known_args.insert(n, v);
+        self.known_args.insert((0, n), v);
         v
     }
 
