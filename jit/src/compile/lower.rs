@@ -419,7 +419,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         Ok(out)
     }
 
-    /// calexpr.c `epow`: `errno` cleared, both sides, the C library's `pow`.
+    /// calexpr.c `epow`: `errno` cleared, both sides, the C library's `pow`. No
+    /// `x*x` fast path for integer exponents: the C library's `pow` is not specified
+    /// to round as a product does, and results must equal the interpreter's.
     fn power(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
         self.set_errno(ERRNO_NONE);
         let x = self.expr(a)?;
