@@ -79,25 +79,29 @@ fn bits(run: &Run) -> Vec<String> {
 
 /// Deep recursion is legal calcomp: give both engines a large stack, as `radc calc` does.
 fn agree(src: &str, rows: &[&str]) {
+    agree_with(src, rows, MathErrors::default());
+}
+
+fn agree_with(src: &str, rows: &[&str], policy: MathErrors) {
     let src = src.to_string();
     let rows: Vec<String> = rows.iter().map(|r| r.to_string()).collect();
     std::thread::Builder::new()
         .stack_size(256 << 20)
         .spawn(move || {
             let rows: Vec<&str> = rows.iter().map(String::as_str).collect();
-            agree_here(&src, &rows)
+            agree_here(&src, &rows, policy)
         })
         .expect("thread")
         .join()
         .expect("agree");
 }
 
-fn agree_here(src: &str, rows: &[&str]) {
+fn agree_here(src: &str, rows: &[&str], policy: MathErrors) {
     for fold in [true, false] {
         let m = module(src, fold);
-        let mut interp = Interpreter::new(&m, MathErrors::default()).expect("interpreter");
+        let mut interp = Interpreter::new(&m, policy).expect("interpreter");
         let expected = bits(&drive(&mut interp, rows));
-        let mut jit = JitProgram::new(&m, MathErrors::default()).expect("jit");
+        let mut jit = JitProgram::new(&m, policy).expect("jit");
         jit.set_stack_budget(128 << 20);
         let got = bits(&drive(&mut jit, rows));
         assert_eq!(got, expected, "program {src:?} (fold {fold})");
@@ -234,4 +238,15 @@ fn deep_recursion_warns() {
 fn constants_and_nonconstant_warnings() {
     agree("a : $1; b : a*2; $1 = b + a", &["3", "4"]);
     agree("c : 2; f(x) : x*c; $1 = f(3) + f($1)", &["3"]);
+}
+
+#[test]
+fn nonfinite_results_as_errors() {
+    // Radiance built with `isnan` as a macro reports NaN and infinity as errors.
+    agree_with(
+        "$1=sqrt($1);$2=log($1)+1;$3=max(sqrt($1),5);$4=$1^0.5;$5=exp($2*1000);\
+         $6=(-8)^(1/3);$7=acos($1)*0+1;$8=if($1,sqrt(-1),1)",
+        &["-1\t1", "0\t2", "4\t0.5"],
+        MathErrors::NonFinite,
+    );
 }

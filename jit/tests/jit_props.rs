@@ -176,7 +176,12 @@ fn show(r: &Result<Option<Outputs>, Error>) -> String {
     }
 }
 
-fn compare(src: &str, rows: &[String]) -> Result<(), TestCaseError> {
+fn compare(src: &str, rows: &[String], nonfinite: bool) -> Result<(), TestCaseError> {
+    let policy = if nonfinite {
+        MathErrors::NonFinite
+    } else {
+        MathErrors::ErrnoOnly
+    };
     for fold in [true, false] {
         let mut m = Module::new(&Env::rcalc());
         m.set_folding(fold);
@@ -188,13 +193,20 @@ fn compare(src: &str, rows: &[String]) -> Result<(), TestCaseError> {
         if fold {
             m.optimize();
         }
-        let mut interp = Interpreter::new(&m, MathErrors::default())
-            .map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let mut interp =
+            Interpreter::new(&m, policy).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let expected = drive(&mut interp, rows);
-        let mut jit = JitProgram::new(&m, MathErrors::default())
-            .map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let mut jit =
+            JitProgram::new(&m, policy).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let got = drive(&mut jit, rows);
-        prop_assert_eq!(got, expected, "program {} (fold {})", src, fold);
+        prop_assert_eq!(
+            got,
+            expected,
+            "program {} (fold {}, {:?})",
+            src,
+            fold,
+            policy
+        );
     }
     Ok(())
 }
@@ -203,7 +215,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
 
     #[test]
-    fn jit_matches_interpreter(src in program(), rows in rows()) {
-        compare(&src, &rows)?;
+    fn jit_matches_interpreter(src in program(), rows in rows(), nonfinite in any::<bool>()) {
+        compare(&src, &rows, nonfinite)?;
     }
 }
