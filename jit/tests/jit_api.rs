@@ -141,3 +141,29 @@ fn oversized_programs_are_declined() {
         .expect("no panic");
     assert!(matches!(result, Some(JitError::TooLarge(_))), "{result:?}");
 }
+
+#[test]
+fn one_program_many_threads() {
+    fn shareable<T: Send + Sync>() {}
+    fn sendable<T: Send>() {}
+    shareable::<radc_jit::Compiled>();
+    sendable::<radc_jit::Context>();
+    let m = module("f(x) = if(x, x*f(x-1), 1); sq(x) = x*x");
+    let c = Jit::new().compile(&m, &["f", "sq"]).expect("compiles");
+    std::thread::scope(|s| {
+        for t in 0..4 {
+            let c = &c;
+            s.spawn(move || {
+                let mut ctx = c.context();
+                let f = c.entry("f").expect("f");
+                let mut none = radc_lang::cal::eval::NoInput;
+                for i in 0..200 {
+                    ctx.next_record();
+                    let n = f64::from((i + t) % 10);
+                    let want: f64 = (1..=((i + t) % 10)).map(f64::from).product();
+                    assert_eq!(c.call(f, &[n], &mut ctx, &mut none), Ok(want));
+                }
+            });
+        }
+    });
+}

@@ -425,3 +425,15 @@ impl Drop for Compiled {
         }
     }
 }
+
+// SAFETY: the only fields that are not `Send` are the entry pointers, which point into
+// code owned by `jit` (a `Send` `JITModule`) and move with it.
+unsafe impl Send for Compiled {}
+// SAFETY: `&self` methods never touch `jit`; they read the immutable entry pointers and
+// tables, and the generated code and host functions write only the `Context` passed by
+// `&mut` and argument blocks on the calling thread's stack. So one program can be
+// evaluated from many threads at once, each with its own context.
+unsafe impl Sync for Compiled {}
+// SAFETY: the raw pointers in a context are null except during `Compiled::run`, which
+// holds the context by `&mut` and clears them before returning.
+unsafe impl Send for Context {}
