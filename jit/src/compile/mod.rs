@@ -17,7 +17,9 @@
 //!   a fatal error makes every function return at once.
 //!
 //! `unsafe` is confined to the call boundary ([`Compiled`]'s `run`), the host
-//! functions' access to the context (`host.rs`) and freeing the code.
+//! functions' access to the context and argument blocks (`host.rs`), freeing the code,
+//! and the `Send`/`Sync` claims for [`Compiled`] and [`Context`], each with its SAFETY
+//! argument.
 
 mod codegen;
 mod host;
