@@ -1,0 +1,213 @@
+//! calcomp evaluation speed: the reference interpreter against the JIT, per record
+//! (every output column of the program evaluated once, on a fresh record clock), on
+//! functions of Radiance's `.cal` library and a typical pattern function; plus the
+//! JIT's compile time. Library programs need the oracle (`tests/oracle/install.sh`);
+//! without it only the self-contained programs run.
+//!
+//! Run: `cargo bench -p radc-jit --bench calc` (numbers in BENCHMARKS.md, "calcomp JIT").
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use radc_jit::Jit;
+use radc_lang::FileId;
+use radc_lang::cal::eval::{Errno, EvalError, Evaluator, Input};
+use radc_lang::cal::{Env, Module};
+use std::hint::black_box;
+use std::path::PathBuf;
+
+/// Input columns already parsed, so only evaluation is timed.
+struct Columns<'a>(&'a [f64]);
+
+impl Input for Columns<'_> {
+    fn column(&mut self, n: u32) -> Result<(f64, Option<Errno>), EvalError> {
+        Ok((self.0.get(n as usize - 1).copied().unwrap_or(0.0), None))
+    }
+    fn column_count(&mut self) -> Result<f64, EvalError> {
+        Ok(self.0.len() as f64)
+    }
+}
+
+struct Program {
+    name: &'static str,
+    /// `.cal` files from the library, loaded in order.
+    files: &'static [&'static str],
+    expr: &'static str,
+    rows: Vec<Vec<f64>>,
+}
+
+/// Bricks with mortar and a little shading: the kind of expression a `brightfunc`
+/// pattern evaluates per ray (self-contained, like a scene's own .cal file).
+const PATTERN: &str = "Px=$1;Py=$2;Pz=$3;\
+    frac(x) : x - floor(x); and(a,b) : if(a, b, a);\
+    mortar : 0.02; bw : 0.2; bh : 0.1;\
+    row = floor(Pz/bh); shift = if(frac(row/2) - 0.25, 0.5, 0);\
+    bx = frac(Px/bw + shift); bz = frac(Pz/bh);\
+    inbrick = and(bx - mortar/bw, bz - mortar/bh);\
+    grain = 0.9 + 0.1*sin(Px*40 + 3*cos(Pz*25)) * cos(Py*17);\
+    $1 = if(inbrick, grain * (0.7 + 0.3*rand(row*37 + floor(Px/bw + shift))), 0.35)";
+
+/// The rcalc comparison of bench/jit_report.sh: a two-argument function with trig,
+/// sqrt and exp.
+const TWO_ARG: &str = "f(x,y) = sqrt(x*x + y*y) * sin(x) * cos(y) + exp(-x*y/100); $1 = f($1, $2)";
+
+fn grid(n: usize, f: impl Fn(f64) -> Vec<f64>) -> Vec<Vec<f64>> {
+    (0..n).map(|i| f(i as f64 / n as f64)).collect()
+}
+
+fn programs() -> Vec<Program> {
+    vec![
+        Program {
+            name: "skybright.cal (CIE clear sky)",
+            files: &["rayinit.cal", "skybright.cal"],
+            expr: "Dx=$1;Dy=$2;Dz=$3;A1=1;A2=3.2;A3=0.2;A4=0.9;A5=0.3;A6=0.4;A7=0.866;$1=skybr",
+            rows: grid(64, |t| {
+                let (a, z) = (t * std::f64::consts::TAU, 0.05 + 0.9 * t);
+                vec![
+                    a.cos() * (1.0 - z * z).sqrt(),
+                    a.sin() * (1.0 - z * z).sqrt(),
+                    z,
+                ]
+            }),
+        },
+        Program {
+            name: "perezlum.cal (Perez sky)",
+            files: &["rayinit.cal", "perezlum.cal"],
+            expr: "Dx=$1;Dy=$2;Dz=$3;A1=1.2;A2=0.2;A3=-1;A4=-0.32;A5=10;A6=-3;A7=0.45;\
+                   A8=0.5;A9=0.1;A10=0.86;$1=skybright",
+            rows: grid(64, |t| {
+                let (a, z) = (t * std::f64::consts::TAU, 0.05 + 0.9 * t);
+                vec![
+                    a.cos() * (1.0 - z * z).sqrt(),
+                    a.sin() * (1.0 - z * z).sqrt(),
+                    z,
+                ]
+            }),
+        },
+        Program {
+            name: "sun.cal (solar position)",
+            files: &["sun.cal"],
+            expr: "MONTH=$1;DAY=$2;TIME=$3;$1=SALT;$2=SAZI;$3=HALFDAY",
+            rows: grid(64, |t| {
+                vec![1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
+            }),
+        },
+        Program {
+            name: "cielab.cal (XYZ to L*a*b*)",
+            files: &["cielab.cal"],
+            expr: "$1=Ls($2);$2=as($1,$2,$3);$3=bs($1,$2,$3);$4=Cs($1,$2,$3);$5=bfunc($1)",
+            rows: grid(64, |t| vec![0.1 + t, 0.005 + 0.9 * t, 1.2 - t]),
+        },
+        Program {
+            name: "reinhart.cal (sky patch index)",
+            files: &["reinhart.cal"],
+            expr: "Dx=$1;Dy=$2;Dz=$3;$1=rbin;$2=r_row",
+            rows: grid(64, |t| {
+                let (a, z) = (t * std::f64::consts::TAU, 0.02 + 0.95 * t);
+                vec![
+                    a.cos() * (1.0 - z * z).sqrt(),
+                    a.sin() * (1.0 - z * z).sqrt(),
+                    z,
+                ]
+            }),
+        },
+        Program {
+            name: "pattern (bricks)",
+            files: &[],
+            expr: PATTERN,
+            rows: grid(64, |t| vec![t * 3.1, 1.0 - t, t * 1.7]),
+        },
+        Program {
+            name: "two-argument function",
+            files: &[],
+            expr: TWO_ARG,
+            rows: grid(64, |t| vec![t * 10.0, 5.0 - t * 3.0]),
+        },
+    ]
+}
+
+fn library_dir() -> Option<PathBuf> {
+    let lib = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.oracle/lib");
+    std::fs::read_dir(&lib)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|e| e.path().join("site-packages/pyradiance/lib"))
+        .find(|p| p.is_dir())
+}
+
+/// As `radc calc` builds it: `MF:4` for reinhart.cal comes first, like rcalc's `-e`.
+fn module(p: &Program, lib: Option<&PathBuf>) -> Option<Module> {
+    let mut m = Module::new(&Env::rcalc());
+    let mut file = 0;
+    if p.files.contains(&"reinhart.cal") {
+        m.add_source(FileId(file), "MF:4");
+        file += 1;
+    }
+    for f in p.files {
+        let text = std::fs::read_to_string(lib?.join(f)).ok()?;
+        m.add_source(FileId(file), &text);
+        file += 1;
+    }
+    let d = m.add_source(FileId(file), p.expr);
+    if d.iter().any(|d| d.is_error()) {
+        return None;
+    }
+    m.optimize();
+    Some(m)
+}
+
+fn entries(m: &Module) -> Vec<String> {
+    m.outputs().keys().map(|c| format!("${c}")).collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let lib = library_dir();
+    if lib.is_none() {
+        eprintln!("notice: no .oracle/ library: only the self-contained programs run");
+    }
+    for p in programs() {
+        let Some(m) = module(&p, lib.as_ref()) else {
+            continue;
+        };
+        let names = entries(&m);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let Ok(compiled) = Jit::new().compile(&m, &names) else {
+            eprintln!("notice: {}: not compiled", p.name);
+            continue;
+        };
+        let handles: Vec<_> = names.iter().filter_map(|n| compiled.entry(n)).collect();
+        let bodies: Vec<_> = m.outputs().values().map(|o| &o.body).collect();
+        let mut group = c.benchmark_group(p.name);
+        let mut ev = Evaluator::new(&m);
+        let mut i = 0;
+        group.bench_function("interpreter (ns/record)", |b| {
+            b.iter(|| {
+                let row = &p.rows[i % p.rows.len()];
+                i += 1;
+                ev.next_record();
+                let mut input = Columns(row);
+                for body in &bodies {
+                    black_box(ev.eval_top(body, &mut input).unwrap_or(0.0));
+                }
+            })
+        });
+        let mut ctx = compiled.context();
+        let mut i = 0;
+        group.bench_function("JIT (ns/record)", |b| {
+            b.iter(|| {
+                let row = &p.rows[i % p.rows.len()];
+                i += 1;
+                ctx.next_record();
+                let mut input = Columns(row);
+                for &h in &handles {
+                    black_box(compiled.eval(h, &mut ctx, &mut input).unwrap_or(0.0));
+                }
+            })
+        });
+        group.bench_function("JIT compile", |b| {
+            b.iter(|| black_box(Jit::new().compile(&m, &names).is_ok()))
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,971 @@
+//! Lowering one function body from the calcomp IR to Cranelift IR, with the
+//! interpreter's (`radc_lang::cal::eval`) semantics step by step: the same operation
+//! order, the same `errno` updates, the same depth counting, lazy call-by-need
+//! arguments, and only the taken side of `if`/`select` evaluated.
+
+use super::JitError;
+use super::codegen::{EntryBody, Job, State, is_constant};
+use super::host::unary_symbol;
+use super::layout::*;
+use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
+use cranelift_codegen::ir::{
+    self, BlockArg, FuncRef, InstBuilder, MemFlagsData, SigRef, StackSlotData, StackSlotKind,
+    Value, types,
+};
+use cranelift_frontend::FunctionBuilder;
+use cranelift_module::{FuncId, Module as _};
+use radc_lang::cal::builtins::{Builtin, LibFn};
+use radc_lang::cal::eval::MathErrors;
+use radc_lang::cal::ir::{Callee, DefId, Expr, Node, SymId};
+use std::collections::HashMap;
+
+type R<T> = Result<T, JitError>;
+
+/// Whose name a call's "argument not a function" error carries.
+#[derive(Clone, Copy)]
+enum CalleeName {
+    Static(SymId),
+    /// Known only at run time (a call through a parameter): the symbol as an i64.
+    Dynamic(Value),
+}
+
+pub struct Lower<'a, 'b, 'm> {
+    b: FunctionBuilder<'b>,
+    st: &'a mut State<'m>,
+    raw: Value,
+    /// The argument block of the activation this code runs in.
+    block: Option<Value>,
+    /// The function whose parameters `Arg` nodes name.
+    owner: Option<DefId>,
+    refs: HashMap<FuncId, FuncRef>,
+    uniform: Option<SigRef>,
+    thunk_sig: Option<SigRef>,
+    /// Parameters (`(0, n)`) and variables (`(1, def)`) already computed on every
+    /// path to the current point: a slot's value never changes once computed, and a
+    /// variable's cached value not within a record, so later uses reuse them.
+    known_args: HashMap<(u8, u32), Value>,
+    abort: Option<ir::Block>,
+}
+
+fn mem() -> MemFlagsData {
+    MemFlagsData::trusted()
+}
+
+fn slot_offset(i: usize) -> i32 {
+    BLOCK_SIZE + i as i32 * SLOT_SIZE
+}
+
+impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
+    pub fn build(mut b: FunctionBuilder<'b>, st: &'a mut State<'m>, job: Job<'m>) -> R<()> {
+        let entry = b.create_block();
+        b.append_block_params_for_function_params(entry);
+        b.switch_to_block(entry);
+        let params = b.block_params(entry).to_vec();
+        let raw = params[0];
+        let (owner, block) = match &job {
+            Job::Func(d) => (Some(*d), params.get(1).copied()),
+            Job::Thunk { owner: Some(d), .. } => (Some(*d), params.get(1).copied()),
+            _ => (None, None),
+        };
+        let mut lw = Lower {
+            b,
+            st,
+            raw,
+            block,
+            owner,
+            refs: HashMap::new(),
+            uniform: None,
+            thunk_sig: None,
+            known_args: HashMap::new(),
+            abort: None,
+        };
+        let v = match job {
+            Job::Var(d) => lw.var_body(d)?,
+            Job::Func(d) => lw.func_body(d)?,
+            // No stack check: any recursion passes through a user function or a
+            // variable, which check.
+            Job::Thunk { expr, .. } => lw.expr(expr)?,
+            Job::Entry { what, .. } => match what {
+                EntryBody::Variable(s) => lw.variable(s)?,
+                EntryBody::Output(e) => lw.expr(e)?,
+            },
+        };
+        lw.b.ins().return_(&[v]);
+        if let Some(abort) = lw.abort {
+            lw.b.switch_to_block(abort);
+            let zero = lw.b.ins().f64const(0.0);
+            lw.b.ins().return_(&[zero]);
+        }
+        lw.b.seal_all_blocks();
+        let config = lw.st.jit.target_config();
+        lw.b.finalize(config);
+        Ok(())
+    }
+
+    // ---- small helpers ------------------------------------------------------------
+
+    fn owner_sym(&self) -> u32 {
+        self.owner.map_or(NO_SYM, |d| self.st.module.def(d).sym.0)
+    }
+
+    fn f64c(&mut self, v: f64) -> Value {
+        self.b.ins().f64const(v)
+    }
+
+    fn i64c(&mut self, v: u64) -> Value {
+        self.b.ins().iconst(types::I64, v as i64)
+    }
+
+    fn i32c(&mut self, v: u32) -> Value {
+        self.b.ins().iconst(types::I32, i64::from(v))
+    }
+
+    fn load_raw(&mut self, ty: ir::Type, off: i32) -> Value {
+        self.b.ins().load(ty, mem(), self.raw, off)
+    }
+
+    fn store_raw(&mut self, v: Value, off: i32) {
+        self.b.ins().store(mem(), v, self.raw, off);
+    }
+
+    fn set_errno(&mut self, e: u64) {
+        let v = self.i64c(e);
+        self.store_raw(v, OFF_ERRNO);
+    }
+
+    fn func_ref(&mut self, id: FuncId) -> FuncRef {
+        if let Some(&r) = self.refs.get(&id) {
+            return r;
+        }
+        let r = self.st.jit.declare_func_in_func(id, self.b.func);
+        self.refs.insert(id, r);
+        r
+    }
+
+    fn call_import(&mut self, name: &'static str, args: &[Value]) -> Option<Value> {
+        let id = self.st.imports[name];
+        let f = self.func_ref(id);
+        let inst = self.b.ins().call(f, args);
+        self.b.inst_results(inst).first().copied()
+    }
+
+    fn call_import_f64(&mut self, name: &'static str, args: &[Value]) -> Value {
+        match self.call_import(name, args) {
+            Some(v) => v,
+            None => self.f64c(0.0),
+        }
+    }
+
+    fn uniform_sig(&mut self) -> SigRef {
+        if let Some(s) = self.uniform {
+            return s;
+        }
+        let s = self.b.import_signature(self.st.sig_uniform.clone());
+        self.uniform = Some(s);
+        s
+    }
+
+    fn thunk_sig(&mut self) -> SigRef {
+        if let Some(s) = self.thunk_sig {
+            return s;
+        }
+        let s = self.b.import_signature(self.st.sig_thunk.clone());
+        self.thunk_sig = Some(s);
+        s
+    }
+
+    fn abort_block(&mut self) -> ir::Block {
+        if let Some(b) = self.abort {
+            return b;
+        }
+        let b = self.b.create_block();
+        self.b.set_cold_block(b);
+        self.abort = Some(b);
+        b
+    }
+
+    /// Return at once (with 0) if a fatal error was raised.
+    fn check_failed(&mut self) {
+        let failed = self.load_raw(types::I64, OFF_FAILED);
+        let cont = self.b.create_block();
+        let abort = self.abort_block();
+        self.b.ins().brif(failed, abort, &[], cont, &[]);
+        self.b.switch_to_block(cont);
+    }
+
+    /// Raise a fatal error and return; code emitted after this is unreachable.
+    fn fail(&mut self, code: u32, sym: u32) -> Value {
+        let c = self.i32c(code);
+        let s = self.i32c(sym);
+        self.call_import("radc_fail", &[self.raw, c, s]);
+        let abort = self.abort_block();
+        self.b.ins().jump(abort, &[]);
+        let dead = self.b.create_block();
+        self.b.switch_to_block(dead);
+        self.f64c(0.0)
+    }
+
+    fn warn(&mut self, code: Value, sym: u32) {
+        let s = self.i32c(sym);
+        self.call_import("radc_warn", &[self.raw, code, s]);
+    }
+
+    fn join(&mut self) -> (ir::Block, Value) {
+        let j = self.b.create_block();
+        let v = self.b.append_block_param(j, types::F64);
+        (j, v)
+    }
+
+    fn jump_with(&mut self, j: ir::Block, v: Value) {
+        self.b.ins().jump(j, &[BlockArg::Value(v)]);
+    }
+
+    /// Branch on `cond`: the `cold` side first, then the other, both ending at `j`.
+    fn cold_branch(&mut self, cond: Value) -> (ir::Block, ir::Block) {
+        let yes = self.b.create_block();
+        let no = self.b.create_block();
+        self.b.set_cold_block(yes);
+        self.b.ins().brif(cond, yes, &[], no, &[]);
+        (yes, no)
+    }
+
+    /// Fail with "too deep" instead of overflowing the native stack.
+    fn stack_check(&mut self, sym: u32) {
+        let sp = self.b.ins().get_stack_pointer(self.st.ptr);
+        let limit = self.load_raw(self.st.ptr, OFF_STACK_LIMIT);
+        let low = self.b.ins().icmp(IntCC::UnsignedLessThan, sp, limit);
+        let (bad, ok) = self.cold_branch(low);
+        self.b.switch_to_block(bad);
+        self.fail(E_TOO_DEEP, sym);
+        self.b.ins().jump(ok, &[]);
+        self.b.switch_to_block(ok);
+    }
+
+    /// `Evaluator::call`'s depth bookkeeping for a call entering nesting `depth`.
+    fn depth_event(&mut self, sym: u32, depth: Value) {
+        let limit = self.load_raw(types::I64, OFF_DEPTH_LIMIT);
+        let hit = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedGreaterThanOrEqual, depth, limit);
+        let (slow, cont) = self.cold_branch(hit);
+        self.b.switch_to_block(slow);
+        let s = self.i32c(sym);
+        self.call_import("radc_depth", &[self.raw, s, depth]);
+        self.check_failed();
+        self.b.ins().jump(cont, &[]);
+        self.b.switch_to_block(cont);
+    }
+
+    fn add_depth(&mut self, delta: i64) -> Value {
+        let d = self.load_raw(types::I64, OFF_DEPTH);
+        let d = self.b.ins().iadd_imm_s(d, delta);
+        self.store_raw(d, OFF_DEPTH);
+        d
+    }
+
+    // ---- function bodies ------------------------------------------------------------
+
+    fn func_body(&mut self, def: DefId) -> R<Value> {
+        let sym = self.st.module.def(def).sym.0;
+        self.stack_check(sym);
+        let d = self.add_depth(1);
+        self.depth_event(sym, d);
+        let body = &self.st.module.def(def).body;
+        let v = self.expr(body)?;
+        self.add_depth(-1);
+        Ok(v)
+    }
+
+    /// Whether the cache slot holds a value for the current record (or for good).
+    fn fresh(&mut self, def: DefId, idx: u32) -> Value {
+        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let off = idx as i32 * CACHED_SIZE;
+        let tick = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
+        if is_constant(self.st.module, def) {
+            self.b.ins().icmp_imm_s(IntCC::Equal, tick, FOREVER as i64)
+        } else {
+            let clock = self.load_raw(types::I64, OFF_CLOCK);
+            let same = self.b.ins().icmp(IntCC::Equal, tick, clock);
+            let set = self.b.ins().icmp_imm_s(IntCC::NotEqual, tick, 0);
+            self.b.ins().band(same, set)
+        }
+    }
+
+    fn cached_value(&mut self, idx: u32) -> Value {
+        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let off = idx as i32 * CACHED_SIZE;
+        self.b.ins().load(types::F64, mem(), cache, off + OFF_VALUE)
+    }
+
+    /// caldefn.c `dvalue` past the definition lookup: the cached value if fresh, else
+    /// the body evaluated at top level and cached.
+    fn var_body(&mut self, def: DefId) -> R<Value> {
+        let module = self.st.module;
+        let d = module.def(def);
+        let sym = d.sym.0;
+        let (_, idx) = self.st.var_fn(def)?;
+        self.stack_check(sym);
+        if is_constant(module, def) && self.st.warn_nonconstant {
+            let w = self.i32c(W_NONCONSTANT);
+            self.warn(w, sym);
+        }
+        let fresh = self.fresh(def, idx);
+        let hit = self.b.create_block();
+        let miss = self.b.create_block();
+        self.b.ins().brif(fresh, hit, &[], miss, &[]);
+        self.b.switch_to_block(hit);
+        let v = self.cached_value(idx);
+        self.b.ins().return_(&[v]);
+        self.b.switch_to_block(miss);
+        let v = self.expr(&d.body)?;
+        self.check_failed();
+        let tick = if is_constant(module, def) {
+            self.i64c(FOREVER)
+        } else {
+            self.load_raw(types::I64, OFF_CLOCK)
+        };
+        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let off = idx as i32 * CACHED_SIZE;
+        self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
+        self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
+        Ok(v)
+    }
+
+    // ---- expressions ----------------------------------------------------------------
+
+    fn expr(&mut self, e: &'m Expr) -> R<Value> {
+        Ok(match &e.node {
+            Node::Num(v) => self.f64c(*v),
+            Node::Chan(n) => {
+                if *n < 1 {
+                    self.fail(E_ILLEGAL_CHANNEL, NO_SYM)
+                } else {
+                    let n = self.i32c(*n);
+                    let v = self.call_import_f64("radc_chan", &[self.raw, n]);
+                    self.check_failed();
+                    v
+                }
+            }
+            Node::Var(s) => self.variable(*s)?,
+            Node::Arg(n) => self.argument(*n),
+            Node::Neg(a) => {
+                let x = self.expr(a)?;
+                self.b.ins().fneg(x)
+            }
+            // Summed from 0 as calexpr.c `eadd` does: `-0 + -0` is 0.
+            Node::Sum(v) => {
+                let mut acc = self.f64c(0.0);
+                for x in v {
+                    let x = self.expr(x)?;
+                    acc = self.b.ins().fadd(acc, x);
+                }
+                acc
+            }
+            // From 1; `1 * x` is `x` to the bit, so the first factor starts.
+            Node::Product(v) => {
+                let mut acc: Option<Value> = None;
+                for x in v {
+                    let x = self.expr(x)?;
+                    acc = Some(match acc {
+                        Some(a) => self.b.ins().fmul(a, x),
+                        None => x,
+                    });
+                }
+                match acc {
+                    Some(a) => a,
+                    None => self.f64c(1.0),
+                }
+            }
+            Node::Sub(a, b) => {
+                let x = self.expr(a)?;
+                let y = self.expr(b)?;
+                self.b.ins().fsub(x, y)
+            }
+            Node::Div(a, b) => self.divide(a, b)?,
+            Node::Pow(a, b) => self.power(a, b)?,
+            Node::Call { callee, args } => match callee {
+                Callee::Sym(s) => self.call_sym(*s, args)?,
+                Callee::Arg(n) => self.call_arg(*n, args)?,
+            },
+        })
+    }
+
+    /// calexpr.c `edivi`: the denominator first; division by zero warns, sets
+    /// `errno` and gives 0 without evaluating the numerator.
+    fn divide(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
+        let den = self.expr(b)?;
+        if b.as_num().is_some_and(|v| v != 0.0) {
+            let num = self.expr(a)?;
+            return Ok(self.b.ins().fdiv(num, den));
+        }
+        let zero = self.f64c(0.0);
+        let is_zero = self.b.ins().fcmp(FloatCC::Equal, den, zero);
+        let (j, out) = self.join();
+        let (z, nz) = self.cold_branch(is_zero);
+        self.b.switch_to_block(z);
+        let w = self.i32c(W_DIVISION);
+        self.warn(w, NO_SYM);
+        self.set_errno(ERRNO_RANGE);
+        let zero = self.f64c(0.0);
+        self.jump_with(j, zero);
+        self.b.switch_to_block(nz);
+        let known = self.known_args.clone();
+        let num = self.expr(a)?;
+        self.known_args = known;
+        let q = self.b.ins().fdiv(num, den);
+        self.jump_with(j, q);
+        self.b.switch_to_block(j);
+        Ok(out)
+    }
+
+    /// calexpr.c `epow`: `errno` cleared, both sides, the C library's `pow`. No
+    /// `x*x` fast path for integer exponents: the C library's `pow` is not specified
+    /// to round as a product does, and results must equal the interpreter's.
+    fn power(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
+        self.set_errno(ERRNO_NONE);
+        let x = self.expr(a)?;
+        let y = self.expr(b)?;
+        let d = self.call_import_f64("radc_pow", &[x, y]);
+        self.nonfinite(d);
+        let errno = self.load_raw(types::I64, OFF_ERRNO);
+        let (j, out) = self.join();
+        let (bad, ok) = self.cold_branch(errno);
+        self.b.switch_to_block(bad);
+        let w = self.i32c(W_POWER);
+        self.warn(w, NO_SYM);
+        let zero = self.f64c(0.0);
+        self.jump_with(j, zero);
+        self.b.switch_to_block(ok);
+        self.jump_with(j, d);
+        self.b.switch_to_block(j);
+        Ok(out)
+    }
+
+    /// `MathErrors::NonFinite`: NaN is a domain error, infinity a range error.
+    fn nonfinite(&mut self, d: Value) {
+        if self.st.policy != MathErrors::NonFinite {
+            return;
+        }
+        let errno = self.load_raw(types::I64, OFF_ERRNO);
+        let nan = self.b.ins().fcmp(FloatCC::Unordered, d, d);
+        let abs = self.b.ins().fabs(d);
+        let inf = self.f64c(f64::INFINITY);
+        let is_inf = self.b.ins().fcmp(FloatCC::Equal, abs, inf);
+        let range = self.i64c(ERRNO_RANGE);
+        let none = self.i64c(ERRNO_NONE);
+        let domain = self.i64c(ERRNO_DOMAIN);
+        let code = self.b.ins().select(is_inf, range, none);
+        let code = self.b.ins().select(nan, domain, code);
+        let unset = self.b.ins().icmp_imm_s(IntCC::Equal, errno, 0);
+        let new = self.b.ins().select(unset, code, errno);
+        self.store_raw(new, OFF_ERRNO);
+    }
+
+    /// A reference to a variable: caldefn.c `dvalue`, with the freshness test inline.
+    fn variable(&mut self, s: SymId) -> R<Value> {
+        let module = self.st.module;
+        let Some(def) = module
+            .current_def(s)
+            .filter(|&d| !module.def(d).is_function())
+        else {
+            return Ok(self.fail(E_UNDEFINED_VARIABLE, s.0));
+        };
+        if let Some(&k) = self.st.host_vars.get(&def) {
+            let hosts = self.load_raw(self.st.ptr, OFF_HOSTS);
+            return Ok(self.b.ins().load(types::F64, mem(), hosts, k as i32 * 8));
+        }
+        if let Node::Num(v) = module.def(def).body.node {
+            return Ok(self.f64c(v));
+        }
+        let (fid, idx) = self.st.var_fn(def)?;
+        let f = self.func_ref(fid);
+        if is_constant(module, def) && self.st.warn_nonconstant {
+            // Every read warns: nothing to reuse.
+            let inst = self.b.ins().call(f, &[self.raw]);
+            let v = self.b.inst_results(inst)[0];
+            self.check_failed();
+            return Ok(v);
+        }
+        if let Some(&v) = self.known_args.get(&(1, def.0)) {
+            return Ok(v);
+        }
+        let v = self.cached_variable(def, f, idx);
+        self.known_args.insert((1, def.0), v);
+        Ok(v)
+    }
+
+    /// The inline freshness test, calling the variable's function on a miss.
+    fn cached_variable(&mut self, def: DefId, f: FuncRef, idx: u32) -> Value {
+        let fresh = self.fresh(def, idx);
+        let (j, out) = self.join();
+        let hit = self.b.create_block();
+        let miss = self.b.create_block();
+        self.b.ins().brif(fresh, hit, &[], miss, &[]);
+        self.b.switch_to_block(hit);
+        let v = self.cached_value(idx);
+        self.jump_with(j, v);
+        self.b.switch_to_block(miss);
+        let inst = self.b.ins().call(f, &[self.raw]);
+        let v = self.b.inst_results(inst)[0];
+        self.check_failed();
+        self.jump_with(j, v);
+        self.b.switch_to_block(j);
+        out
+    }
+
+    /// calfunc.c `argument`: parameter `n`, computed once per call in the caller's
+    /// context (one level less deep).
+    fn argument(&mut self, n: u32) -> Value {
+        if let Some(&v) = self.known_args.get(&(0, n)) {
+            return v;
+        }
+        let v = self.compute_argument(n);
+        self.known_args.insert((0, n), v);
+        v
+    }
+
+    fn compute_argument(&mut self, n: u32) -> Value {
+        let Some(block) = self.block else {
+            return self.fail(E_TOO_FEW, NO_SYM);
+        };
+        let osym = self.owner_sym();
+        let (j, out) = self.join();
+        self.check_arg_count(block, n, osym, j);
+        let off = slot_offset(n as usize - 1);
+        let state = self
+            .b
+            .ins()
+            .load(types::I64, mem(), block, off + OFF_SLOT_STATE);
+        let have = self.b.create_block();
+        let compute = self.b.create_block();
+        self.b.ins().brif(state, have, &[], compute, &[]);
+        self.b.switch_to_block(have);
+        let v = self
+            .b
+            .ins()
+            .load(types::F64, mem(), block, off + OFF_SLOT_VALUE);
+        self.jump_with(j, v);
+        self.b.switch_to_block(compute);
+        self.add_depth(-1);
+        let thunk = self
+            .b
+            .ins()
+            .load(self.st.ptr, mem(), block, off + OFF_SLOT_THUNK);
+        let parent = self.b.ins().load(self.st.ptr, mem(), block, OFF_PARENT);
+        let sig = self.thunk_sig();
+        let slot = self.b.ins().iadd_imm_s(block, i64::from(off));
+        let inst = self
+            .b
+            .ins()
+            .call_indirect(sig, thunk, &[self.raw, parent, slot]);
+        let v = self.b.inst_results(inst)[0];
+        self.add_depth(1);
+        self.check_failed();
+        self.b.ins().store(mem(), v, block, off + OFF_SLOT_VALUE);
+        let one = self.i64c(1);
+        self.b.ins().store(mem(), one, block, off + OFF_SLOT_STATE);
+        self.jump_with(j, v);
+        self.b.switch_to_block(j);
+        out
+    }
+
+    /// "too few arguments" (for the function `osym`) when the block has fewer than
+    /// `n`; the failing path ends at `j`. Continues on the good path.
+    fn check_arg_count(&mut self, block: Value, n: u32, osym: u32, j: ir::Block) {
+        let nargs = self.b.ins().load(types::I64, mem(), block, OFF_NARGS);
+        let short = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::UnsignedLessThan, nargs, i64::from(n));
+        let (bad, ok) = self.cold_branch(short);
+        self.b.switch_to_block(bad);
+        let zero = self.fail(E_TOO_FEW, osym);
+        self.jump_with(j, zero);
+        self.b.switch_to_block(ok);
+    }
+
+    // ---- calls ------------------------------------------------------------------------
+
+    /// calfunc.c `efunc` by name: a user function if the name's definition is one,
+    /// else the library function.
+    fn call_sym(&mut self, s: SymId, args: &'m [Expr]) -> R<Value> {
+        let module = self.st.module;
+        if let Some(def) = module
+            .current_def(s)
+            .filter(|&d| module.def(d).is_function())
+        {
+            let fid = self.st.user_fn(def)?;
+            let fill = self.st.uses_fn_values(def);
+            let block = self.build_block(args, CalleeName::Static(s), fill)?;
+            let f = self.func_ref(fid);
+            let inst = self.b.ins().call(f, &[self.raw, block]);
+            let v = self.b.inst_results(inst)[0];
+            self.check_failed();
+            return Ok(v);
+        }
+        Ok(match module.symbol(s).lib {
+            Some(LibFn::Builtin(b)) => self.builtin(b, s.0, args)?,
+            Some(LibFn::In) => {
+                self.lib_enter(s.0);
+                self.set_errno(ERRNO_NONE);
+                let x = self.lib_arg(args, 0, s.0)?;
+                let d = self.call_import_f64("radc_in", &[self.raw, x]);
+                self.check_failed();
+                self.lib_result(d, s.0)
+            }
+            Some(LibFn::Renderer(_)) => {
+                self.lib_enter(s.0);
+                self.fail(E_NOT_AVAILABLE, s.0)
+            }
+            None => {
+                self.lib_enter(s.0);
+                self.fail(E_UNDEFINED_FUNCTION, s.0)
+            }
+        })
+    }
+
+    /// A call through parameter `n`: calfunc.c `eargf`, resolved when the argument
+    /// block was built, called here.
+    fn call_arg(&mut self, n: u32, args: &'m [Expr]) -> R<Value> {
+        let Some(block) = self.block else {
+            return Ok(self.fail(E_NOT_FUNCTION, NO_SYM));
+        };
+        let osym = self.owner_sym();
+        let (j, out) = self.join();
+        self.check_arg_count(block, n, osym, j);
+        let off = slot_offset(n as usize - 1);
+        let fp = self
+            .b
+            .ins()
+            .load(self.st.ptr, mem(), block, off + OFF_SLOT_FN_PTR);
+        let code = self
+            .b
+            .ins()
+            .load(types::I64, mem(), block, off + OFF_SLOT_FN_CODE);
+        let sym = self.b.ins().ushr_imm_u(code, FN_SHIFT as i64);
+        let new_block = self.build_block(args, CalleeName::Dynamic(sym), true)?;
+        let direct = self.b.create_block();
+        let via_host = self.b.create_block();
+        self.b.ins().brif(fp, direct, &[], via_host, &[]);
+        self.b.switch_to_block(direct);
+        let sig = self.uniform_sig();
+        let inst = self.b.ins().call_indirect(sig, fp, &[self.raw, new_block]);
+        let v = self.b.inst_results(inst)[0];
+        self.check_failed();
+        self.jump_with(j, v);
+        self.b.switch_to_block(via_host);
+        let v = self.call_import_f64("radc_fnval", &[self.raw, new_block, code]);
+        self.check_failed();
+        self.jump_with(j, v);
+        self.b.switch_to_block(j);
+        Ok(out)
+    }
+
+    /// The argument block of a call, in this frame: a thunk per argument (numbers
+    /// are stored as already computed), and, if the callee may call them, each
+    /// argument as a function value.
+    fn build_block(&mut self, args: &'m [Expr], callee: CalleeName, fill: bool) -> R<Value> {
+        let size = (BLOCK_SIZE + args.len() as i32 * SLOT_SIZE) as u32;
+        let ss = self.b.create_sized_stack_slot(StackSlotData::new(
+            StackSlotKind::ExplicitSlot,
+            size,
+            3,
+        ));
+        let base = self.b.ins().stack_addr(self.st.ptr, ss, 0);
+        let parent = match self.block {
+            Some(b) => b,
+            None => self.b.ins().iconst(self.st.ptr, 0),
+        };
+        self.b.ins().store(mem(), parent, base, OFF_PARENT);
+        let nargs = self.i64c(args.len() as u64);
+        self.b.ins().store(mem(), nargs, base, OFF_NARGS);
+        let mut not_function: Option<Value> = None;
+        for (i, a) in args.iter().enumerate() {
+            let off = slot_offset(i);
+            if let Node::Num(v) = a.node {
+                let v = self.f64c(v);
+                self.b.ins().store(mem(), v, base, off + OFF_SLOT_VALUE);
+                let one = self.i64c(1);
+                self.b.ins().store(mem(), one, base, off + OFF_SLOT_STATE);
+            } else if let Node::Chan(n @ 1..) = a.node {
+                let zero = self.i64c(0);
+                self.b.ins().store(mem(), zero, base, off + OFF_SLOT_STATE);
+                let id = self.st.imports["radc_chan_thunk"];
+                let fr = self.func_ref(id);
+                let addr = self.b.ins().func_addr(self.st.ptr, fr);
+                self.b.ins().store(mem(), addr, base, off + OFF_SLOT_THUNK);
+                let n = self.i64c(u64::from(n));
+                self.b.ins().store(mem(), n, base, off + OFF_SLOT_AUX);
+            } else {
+                let zero = self.i64c(0);
+                self.b.ins().store(mem(), zero, base, off + OFF_SLOT_STATE);
+                let tid = self.st.thunk(a, self.owner)?;
+                let fr = self.func_ref(tid);
+                let addr = self.b.ins().func_addr(self.st.ptr, fr);
+                self.b.ins().store(mem(), addr, base, off + OFF_SLOT_THUNK);
+            }
+            if fill {
+                let (fp, code) = self.fn_value(a, callee, &mut not_function)?;
+                self.b.ins().store(mem(), fp, base, off + OFF_SLOT_FN_PTR);
+                self.b
+                    .ins()
+                    .store(mem(), code, base, off + OFF_SLOT_FN_CODE);
+            }
+        }
+        Ok(base)
+    }
+
+    /// An argument expression as a function value (calfunc.c `eargf` rules).
+    fn fn_value(
+        &mut self,
+        a: &'m Expr,
+        callee: CalleeName,
+        not_function: &mut Option<Value>,
+    ) -> R<(Value, Value)> {
+        let module = self.st.module;
+        let code = |s: u32, kind: u64| (u64::from(s) << FN_SHIFT) | kind;
+        Ok(match a.node {
+            Node::Var(s) => {
+                match module
+                    .current_def(s)
+                    .filter(|&d| module.def(d).is_function())
+                {
+                    Some(def) => {
+                        let fid = self.st.user_fn(def)?;
+                        let fr = self.func_ref(fid);
+                        let fp = self.b.ins().func_addr(self.st.ptr, fr);
+                        (fp, self.i64c(code(s.0, FN_USER)))
+                    }
+                    None => {
+                        let kind = if module.symbol(s).lib.is_some() {
+                            FN_LIB
+                        } else {
+                            FN_UNDEFINED
+                        };
+                        (self.i64c(0), self.i64c(code(s.0, kind)))
+                    }
+                }
+            }
+            Node::Arg(m) => match self.block {
+                Some(block) => {
+                    let osym = self.owner_sym();
+                    let j = self.b.create_block();
+                    let fp = self.b.append_block_param(j, self.st.ptr);
+                    let cd = self.b.append_block_param(j, types::I64);
+                    let nargs = self.b.ins().load(types::I64, mem(), block, OFF_NARGS);
+                    let ok = self.b.ins().icmp_imm_s(
+                        IntCC::UnsignedGreaterThanOrEqual,
+                        nargs,
+                        i64::from(m),
+                    );
+                    let copy = self.b.create_block();
+                    let short = self.b.create_block();
+                    self.b.ins().brif(ok, copy, &[], short, &[]);
+                    self.b.switch_to_block(copy);
+                    let off = slot_offset(m as usize - 1);
+                    let p = self
+                        .b
+                        .ins()
+                        .load(self.st.ptr, mem(), block, off + OFF_SLOT_FN_PTR);
+                    let c = self
+                        .b
+                        .ins()
+                        .load(types::I64, mem(), block, off + OFF_SLOT_FN_CODE);
+                    self.b
+                        .ins()
+                        .jump(j, &[BlockArg::Value(p), BlockArg::Value(c)]);
+                    self.b.switch_to_block(short);
+                    let p = self.b.ins().iconst(self.st.ptr, 0);
+                    let c = self.i64c(code(osym, FN_TOO_FEW));
+                    self.b
+                        .ins()
+                        .jump(j, &[BlockArg::Value(p), BlockArg::Value(c)]);
+                    self.b.switch_to_block(j);
+                    (fp, cd)
+                }
+                None => (self.i64c(0), self.i64c(code(NO_SYM, FN_NOT_FUNCTION))),
+            },
+            _ => {
+                let c = match *not_function {
+                    Some(c) => c,
+                    None => {
+                        let c = match callee {
+                            CalleeName::Static(s) => self.i64c(code(s.0, FN_NOT_FUNCTION)),
+                            CalleeName::Dynamic(sym) => {
+                                let shifted = self.b.ins().ishl_imm_u(sym, FN_SHIFT as i64);
+                                self.b.ins().bor_imm_u(shifted, FN_NOT_FUNCTION as i64)
+                            }
+                        };
+                        *not_function = Some(c);
+                        c
+                    }
+                };
+                (self.i64c(0), c)
+            }
+        })
+    }
+
+    // ---- library functions, inline -----------------------------------------------------
+
+    /// A library call's entry in `Evaluator::call`: one level deeper while it runs,
+    /// but its arguments are evaluated back at the caller's depth, so only the check
+    /// is needed here.
+    fn lib_enter(&mut self, sym: u32) {
+        let d = self.load_raw(types::I64, OFF_DEPTH);
+        let d = self.b.ins().iadd_imm_s(d, 1);
+        self.depth_event(sym, d);
+    }
+
+    fn lib_arg(&mut self, args: &'m [Expr], i: usize, sym: u32) -> R<Value> {
+        match args.get(i) {
+            Some(a) => self.expr(a),
+            None => Ok(self.fail(E_TOO_FEW, sym)),
+        }
+    }
+
+    /// calfunc.c `libfunc`'s epilogue: a raised `errno` warns and gives 0.
+    fn lib_result(&mut self, d: Value, sym: u32) -> Value {
+        self.nonfinite(d);
+        let errno = self.load_raw(types::I64, OFF_ERRNO);
+        let (j, out) = self.join();
+        let (bad, ok) = self.cold_branch(errno);
+        self.b.switch_to_block(bad);
+        let is_domain = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::Equal, errno, ERRNO_DOMAIN as i64);
+        let domain = self.i32c(W_DOMAIN);
+        let range = self.i32c(W_RANGE);
+        let w = self.b.ins().select(is_domain, domain, range);
+        self.warn(w, sym);
+        let zero = self.f64c(0.0);
+        self.jump_with(j, zero);
+        self.b.switch_to_block(ok);
+        self.jump_with(j, d);
+        self.b.switch_to_block(j);
+        out
+    }
+
+    fn builtin(&mut self, b: Builtin, sym: u32, args: &'m [Expr]) -> R<Value> {
+        self.lib_enter(sym);
+        self.set_errno(ERRNO_NONE);
+        let d = match b {
+            Builtin::If => {
+                let c = self.lib_arg(args, 0, sym)?;
+                let zero = self.f64c(0.0);
+                let gt = self.b.ins().fcmp(FloatCC::GreaterThan, c, zero);
+                let (j, out) = self.join();
+                let yes = self.b.create_block();
+                let no = self.b.create_block();
+                self.b.ins().brif(gt, yes, &[], no, &[]);
+                let known = self.known_args.clone();
+                self.b.switch_to_block(yes);
+                let v = self.lib_arg(args, 1, sym)?;
+                self.jump_with(j, v);
+                self.known_args = known.clone();
+                self.b.switch_to_block(no);
+                let v = self.lib_arg(args, 2, sym)?;
+                self.jump_with(j, v);
+                self.known_args = known;
+                self.b.switch_to_block(j);
+                out
+            }
+            Builtin::Select => self.select(args, sym)?,
+            Builtin::Max | Builtin::Min => {
+                let mut best = self.lib_arg(args, 0, sym)?;
+                let cc = if b == Builtin::Max {
+                    FloatCC::GreaterThan
+                } else {
+                    FloatCC::LessThan
+                };
+                for k in (1..args.len()).rev() {
+                    let v = self.lib_arg(args, k, sym)?;
+                    let keep = self.b.ins().fcmp(cc, best, v);
+                    best = self.b.ins().select(keep, best, v);
+                }
+                best
+            }
+            Builtin::Atan2 => {
+                let y = self.lib_arg(args, 0, sym)?;
+                let x = self.lib_arg(args, 1, sym)?;
+                self.call_import_f64("radc_atan2", &[y, x])
+            }
+            // Exact operations: the hardware instruction is the C library's result.
+            Builtin::Floor | Builtin::Ceil | Builtin::Sqrt => {
+                let x = self.lib_arg(args, 0, sym)?;
+                match b {
+                    Builtin::Floor => self.b.ins().floor(x),
+                    Builtin::Ceil => self.b.ins().ceil(x),
+                    _ => self.b.ins().sqrt(x),
+                }
+            }
+            other => {
+                let x = self.lib_arg(args, 0, sym)?;
+                match unary_symbol(other) {
+                    Some(name) => self.call_import_f64(name, &[x]),
+                    None => self.f64c(0.0),
+                }
+            }
+        };
+        Ok(self.lib_result(d, sym))
+    }
+
+    /// calfunc.c `l_select`: the rounded index picks one argument, evaluated alone;
+    /// 0 gives the count of the rest; out of range is a domain error.
+    fn select(&mut self, args: &'m [Expr], sym: u32) -> R<Value> {
+        let a1 = self.lib_arg(args, 0, sym)?;
+        if args.is_empty() {
+            return Ok(a1);
+        }
+        let nargs = args.len() as i64;
+        let half = self.f64c(0.5);
+        let r = self.b.ins().fadd(a1, half);
+        let n = self.b.ins().fcvt_to_sint_sat(types::I64, r);
+        let nan = self.b.ins().fcmp(FloatCC::Unordered, a1, a1);
+        let lim = self.f64c(-0.5);
+        let low = self.b.ins().fcmp(FloatCC::LessThan, a1, lim);
+        let high = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, n, nargs);
+        let bad = self.b.ins().bor(nan, low);
+        let bad = self.b.ins().bor(bad, high);
+        let (j, out) = self.join();
+        let (dom, ok) = self.cold_branch(bad);
+        self.b.switch_to_block(dom);
+        self.set_errno(ERRNO_DOMAIN);
+        let zero = self.f64c(0.0);
+        self.jump_with(j, zero);
+        self.b.switch_to_block(ok);
+        for k in 0..args.len() {
+            let case = self.b.create_block();
+            if k + 1 < args.len() {
+                let next = self.b.create_block();
+                let is_k = self.b.ins().icmp_imm_s(IntCC::Equal, n, k as i64);
+                self.b.ins().brif(is_k, case, &[], next, &[]);
+                self.b.switch_to_block(case);
+                self.select_case(args, k, sym, j)?;
+                self.b.switch_to_block(next);
+            } else {
+                self.b.ins().jump(case, &[]);
+                self.b.switch_to_block(case);
+                self.select_case(args, k, sym, j)?;
+            }
+        }
+        self.b.switch_to_block(j);
+        Ok(out)
+    }
+
+    fn select_case(&mut self, args: &'m [Expr], k: usize, sym: u32, j: ir::Block) -> R<()> {
+        let known = self.known_args.clone();
+        let v = if k == 0 {
+            self.f64c((args.len() - 1) as f64)
+        } else {
+            self.lib_arg(args, k, sym)?
+        };
+        self.jump_with(j, v);
+        self.known_args = known;
+        Ok(())
+    }
+}

@@ -1,0 +1,441 @@
+//! The Cranelift JIT for calcomp: compiles the definitions a set of entry points
+//! reaches to native code that computes exactly what the reference interpreter
+//! computes, bit for bit, with the same warnings and errors in the same order.
+//!
+//! How the interpreter's rules map to generated code:
+//! - every variable definition becomes a function that checks its cache slot (in the
+//!   [`Context`]) against the record clock, so `=` values are computed once per record
+//!   and `:` values once; the fast path of that check is inlined at each reference;
+//! - every user function becomes a function `(ctx, block) -> f64`; `block` is the
+//!   call's argument block, built in the caller's frame, holding one thunk per
+//!   argument and its memoised value (call-by-need, evaluated in the caller's
+//!   context), plus the argument as a function value for calls through parameters;
+//! - library functions are inlined: `if`/`select` branch, `min`/`max` compare, the C
+//!   library functions are calls into the Rust functions the interpreter uses;
+//! - `errno`, the depth counter and the "failed" flag live in the context, so a
+//!   division by zero inside `max(...)` poisons the call exactly as in calfunc.c, and
+//!   a fatal error makes every function return at once.
+//!
+//! `unsafe` is confined to the call boundary ([`Compiled`]'s `run`), the host
+//! functions' access to the context and argument blocks (`host.rs`), freeing the code,
+//! and the `Send`/`Sync` claims for [`Compiled`] and [`Context`], each with its SAFETY
+//! argument.
+
+mod codegen;
+mod host;
+mod layout;
+mod lower;
+mod program;
+
+pub use program::{JitProgram, StartError};
+
+use codegen::{EntryBody, Job, State};
+use cranelift_jit::JITModule;
+use cranelift_module::{FuncId, Module as _};
+use layout::{Block, Cached, Raw, Slot, Tables};
+use radc_lang::cal::Module;
+use radc_lang::cal::eval::{EvalError, Input, MAX_DEPTH, MathErrors, NoInput, Warning};
+use radc_lang::cal::ir::DefId;
+use std::ffi::c_void;
+use std::fmt;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Why a program was not compiled; the caller falls back to the interpreter.
+#[derive(Clone, Debug, PartialEq)]
+pub enum JitError {
+    /// An entry point names nothing the program defines.
+    UnknownEntry(String),
+    /// Past the size or nesting limits.
+    TooLarge(String),
+    /// Cranelift refused (unsupported host, a code generation limit).
+    Backend(String),
+}
+
+impl fmt::Display for JitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            JitError::UnknownEntry(n) => write!(f, "{n}: no such variable, function or output"),
+            JitError::TooLarge(why) => write!(f, "program too large to compile: {why}"),
+            JitError::Backend(why) => write!(f, "code generation failed: {why}"),
+        }
+    }
+}
+
+impl std::error::Error for JitError {}
+
+/// Compiler options.
+#[derive(Clone, Debug, Default)]
+pub struct Jit {
+    policy: MathErrors,
+    host_variables: Vec<String>,
+}
+
+/// A compiled entry point, from [`Compiled::entry`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Entry(usize);
+
+#[derive(Clone, Copy, Debug)]
+enum EntryCode {
+    /// `(ctx) -> f64`: a variable's value or an output column.
+    Value(*const u8),
+    /// `(ctx, block) -> f64`: a function, called with host-supplied arguments.
+    Function(*const u8),
+}
+
+enum EntryPlan<'m> {
+    Body(EntryBody<'m>),
+    Function(DefId),
+}
+
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+/// Default native stack the generated code may use below the caller's frame.
+pub const DEFAULT_STACK_BUDGET: usize = 1 << 20;
+
+impl Jit {
+    pub fn new() -> Self {
+        Jit::default()
+    }
+
+    /// Which non-finite results count as errors (as `Evaluator::with_policy`).
+    pub fn with_policy(mut self, policy: MathErrors) -> Self {
+        self.policy = policy;
+        self
+    }
+
+    /// Variables whose value the host sets per evaluation (rcalc's `recno` and
+    /// `outno`), read from the context instead of their definitions; see
+    /// [`Context::set_host`]. Names that resolve to no variable are ignored.
+    pub fn with_host_variables(mut self, names: &[&str]) -> Self {
+        self.host_variables = names.iter().map(|n| n.to_string()).collect();
+        self
+    }
+
+    /// Compile what `entries` reach. An entry is a variable or function name as
+    /// written, or `$N` for output column N.
+    pub fn compile(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
+        // A Cranelift panic is a bug to report, but never a reason to fail the
+        // program: the caller falls back to the interpreter.
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.compile_unguarded(module, entries)
+        }))
+        .unwrap_or_else(|_| Err(JitError::Backend("code generator panicked".into())))
+    }
+
+    fn compile_unguarded(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
+        let mut plans = Vec::new();
+        let mut roots = Vec::new();
+        let mut syms = Vec::new();
+        for &name in entries {
+            if let Some(col) = name.strip_prefix('$') {
+                let body = col
+                    .parse::<u32>()
+                    .ok()
+                    .and_then(|c| module.outputs().get(&c))
+                    .map(|o| &o.body)
+                    .ok_or_else(|| JitError::UnknownEntry(name.to_string()))?;
+                roots.push(body);
+                plans.push(EntryPlan::Body(EntryBody::Output(body)));
+                continue;
+            }
+            let sym = module
+                .lookup(name)
+                .ok_or_else(|| JitError::UnknownEntry(name.to_string()))?;
+            syms.push(sym);
+            match module
+                .current_def(sym)
+                .filter(|&d| module.def(d).is_function())
+            {
+                Some(d) => plans.push(EntryPlan::Function(d)),
+                None => plans.push(EntryPlan::Body(EntryBody::Variable(sym))),
+            }
+        }
+        let defs = codegen::reachable(module, &roots, &syms);
+        codegen::check_size(module, &roots, &defs)?;
+
+        let mut state = State::new(module, self.policy)?;
+        let mut host_names = Vec::new();
+        for name in &self.host_variables {
+            let def = module
+                .lookup(name)
+                .and_then(|s| module.current_def(s))
+                .filter(|&d| !module.def(d).is_function());
+            if let Some(d) = def {
+                state.host_vars.insert(d, host_names.len() as u32);
+                host_names.push(name.clone());
+            }
+        }
+        let mut ids: Vec<(FuncId, bool)> = Vec::new();
+        for plan in &plans {
+            match plan {
+                EntryPlan::Body(what) => {
+                    let id = state
+                        .jit
+                        .declare_anonymous_function(&state.sig_var)
+                        .map_err(|e| JitError::Backend(e.to_string()))?;
+                    state.queue.push(Job::Entry { id, what: *what });
+                    ids.push((id, false));
+                }
+                EntryPlan::Function(d) => ids.push((state.user_fn(*d)?, true)),
+            }
+        }
+        codegen::drain(&mut state)?;
+        state
+            .jit
+            .finalize_definitions()
+            .map_err(|e| JitError::Backend(e.to_string()))?;
+        let codes = ids
+            .iter()
+            .map(|&(id, function)| {
+                let p = state.jit.get_finalized_function(id);
+                if function {
+                    EntryCode::Function(p)
+                } else {
+                    EntryCode::Value(p)
+                }
+            })
+            .collect();
+        let tables = Tables {
+            names: module.symbols().iter().map(|s| s.name.clone()).collect(),
+            libs: module.symbols().iter().map(|s| s.lib).collect(),
+            policy: self.policy,
+        };
+        Ok(Compiled {
+            functions: state.var_fns.len() + state.user_fns.len(),
+            entry_names: entries.iter().map(|e| e.to_string()).collect(),
+            codes,
+            tables: Arc::new(tables),
+            cache_init: state.cache_init,
+            host_names,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+            jit: Some(state.jit),
+        })
+    }
+}
+
+/// Compiled code for a module's entry points. Evaluate with a [`Context`] made by
+/// [`Compiled::context`].
+pub struct Compiled {
+    jit: Option<JITModule>,
+    entry_names: Vec<String>,
+    codes: Vec<EntryCode>,
+    tables: Arc<Tables>,
+    cache_init: Vec<Cached>,
+    host_names: Vec<String>,
+    functions: usize,
+    id: u64,
+}
+
+/// The state of evaluation for one [`Compiled`] program: cached values, the record
+/// clock, host variables, warnings. Like the interpreter's `Evaluator`.
+pub struct Context {
+    raw: Raw,
+    cache: Vec<Cached>,
+    hosts: Vec<f64>,
+    owner: u64,
+    stack_budget: usize,
+}
+
+impl Context {
+    /// Start a new record: every `=` value is recomputed on next use.
+    pub fn next_record(&mut self) {
+        self.raw.clock += 1;
+        if self.raw.clock == layout::FOREVER {
+            self.raw.clock = 1;
+        }
+    }
+
+    /// Set host variable `index` (its position among those that resolved in
+    /// [`Jit::with_host_variables`], see [`Compiled::host_index`]).
+    pub fn set_host(&mut self, index: usize, value: f64) {
+        if let Some(v) = self.hosts.get_mut(index) {
+            *v = value;
+        }
+    }
+
+    /// Warnings raised since the last call, in order.
+    pub fn take_warnings(&mut self) -> Vec<Warning> {
+        std::mem::take(&mut self.raw.warnings)
+    }
+
+    /// Native stack the generated code may use below the caller before failing with
+    /// "recursion too deep" (calcomp recursion is unbounded; a thread's stack is not).
+    pub fn set_stack_budget(&mut self, bytes: usize) {
+        self.stack_budget = bytes;
+    }
+}
+
+impl Compiled {
+    pub fn entry(&self, name: &str) -> Option<Entry> {
+        self.entry_names.iter().position(|n| n == name).map(Entry)
+    }
+
+    /// Where a host variable is in the context, if it resolved.
+    pub fn host_index(&self, name: &str) -> Option<usize> {
+        self.host_names.iter().position(|n| n == name)
+    }
+
+    /// Variable and function bodies compiled (thunks not counted).
+    pub fn function_count(&self) -> usize {
+        self.functions
+    }
+
+    pub fn context(&self) -> Context {
+        Context {
+            raw: Raw {
+                clock: 0,
+                errno: layout::ERRNO_NONE,
+                failed: 0,
+                depth: 0,
+                depth_limit: 100,
+                stack_limit: 0,
+                cache: std::ptr::null_mut(),
+                hosts: std::ptr::null(),
+                input: std::ptr::null_mut(),
+                next_report: 100,
+                warnings: Vec::new(),
+                error: None,
+                tables: Arc::clone(&self.tables),
+            },
+            cache: self.cache_init.clone(),
+            hosts: vec![0.0; self.host_names.len()],
+            owner: self.id,
+            stack_budget: DEFAULT_STACK_BUDGET,
+        }
+    }
+
+    /// The value of a variable or output entry (a function entry is called with no
+    /// arguments).
+    pub fn eval(
+        &self,
+        entry: Entry,
+        ctx: &mut Context,
+        input: &mut dyn Input,
+    ) -> Result<f64, EvalError> {
+        self.call(entry, &[], ctx, input)
+    }
+
+    /// Evaluate with no input columns.
+    pub fn eval_no_input(&self, entry: Entry, ctx: &mut Context) -> Result<f64, EvalError> {
+        self.call(entry, &[], ctx, &mut NoInput)
+    }
+
+    /// Call a function entry with arguments (for a variable or output entry the
+    /// arguments are ignored).
+    pub fn call(
+        &self,
+        entry: Entry,
+        args: &[f64],
+        ctx: &mut Context,
+        input: &mut dyn Input,
+    ) -> Result<f64, EvalError> {
+        let Some(&code) = self.codes.get(entry.0) else {
+            return Err(EvalError::NotAvailable(format!("entry #{}", entry.0)));
+        };
+        if ctx.owner != self.id {
+            return Err(EvalError::NotAvailable(
+                "a context made for another compiled program".into(),
+            ));
+        }
+        self.run(code, args, ctx, input)
+    }
+
+    fn run(
+        &self,
+        code: EntryCode,
+        args: &[f64],
+        ctx: &mut Context,
+        input: &mut dyn Input,
+    ) -> Result<f64, EvalError> {
+        let marker = 0u8;
+        let here = std::hint::black_box(&marker) as *const u8 as usize;
+        let raw = &mut ctx.raw;
+        raw.stack_limit = here.saturating_sub(ctx.stack_budget) as u64;
+        raw.cache = ctx.cache.as_mut_ptr();
+        raw.hosts = ctx.hosts.as_ptr();
+        raw.depth = 0;
+        raw.failed = 0;
+        raw.error = None;
+        raw.depth_limit = raw.next_report.min(MAX_DEPTH + 1);
+        let mut input_ref: &mut dyn Input = input;
+        raw.input = (&mut input_ref) as *mut &mut dyn Input as *mut c_void;
+        let raw_ptr: *mut Raw = raw;
+        let value = match code {
+            EntryCode::Value(p) => {
+                // SAFETY: `p` is a finalized function of `self.jit` (alive as long as
+                // `self`) generated with the `(ctx) -> f64` system-ABI signature.
+                let f: extern "C" fn(*mut Raw) -> f64 = unsafe { std::mem::transmute(p) };
+                f(raw_ptr)
+            }
+            EntryCode::Function(p) => {
+                let mut words = host_block(args);
+                // SAFETY: as above, with the `(ctx, block) -> f64` signature; the block
+                // is laid out as the generated code expects and outlives the call.
+                let f: extern "C" fn(*mut Raw, *mut Block) -> f64 =
+                    unsafe { std::mem::transmute(p) };
+                f(raw_ptr, words.as_mut_ptr() as *mut Block)
+            }
+        };
+        let raw = &mut ctx.raw;
+        raw.input = std::ptr::null_mut();
+        raw.cache = std::ptr::null_mut();
+        raw.hosts = std::ptr::null();
+        if raw.failed != 0 {
+            raw.failed = 0;
+            return Err(raw
+                .error
+                .take()
+                .unwrap_or_else(|| EvalError::TooDeep(String::from("?"))));
+        }
+        Ok(value)
+    }
+}
+
+/// An argument block of already computed values, for calling a function entry.
+fn host_block(args: &[f64]) -> Vec<u64> {
+    let words = (layout::BLOCK_SIZE as usize + args.len() * layout::SLOT_SIZE as usize) / 8;
+    let mut buf = vec![0u64; words];
+    buf[1] = args.len() as u64;
+    let per_slot = layout::SLOT_SIZE as usize / 8;
+    for (i, &v) in args.iter().enumerate() {
+        let at = layout::BLOCK_SIZE as usize / 8 + i * per_slot;
+        buf[at] = v.to_bits();
+        buf[at + 1] = 1;
+        // A plain number is not a function: fn_ptr stays null, fn_code is
+        // "argument not a function" with no name.
+        buf[at + 4] = (u64::from(layout::NO_SYM) << layout::FN_SHIFT) | layout::FN_NOT_FUNCTION;
+    }
+    buf
+}
+
+const _: () = {
+    assert!(std::mem::size_of::<Block>() == 16);
+    assert!(std::mem::size_of::<Slot>() == 48);
+    assert!(std::mem::offset_of!(Slot, value) == 0);
+    assert!(std::mem::offset_of!(Slot, state) == 8);
+    assert!(std::mem::offset_of!(Slot, fn_code) == 32);
+    assert!(std::mem::offset_of!(Block, nargs) == 8);
+};
+
+impl Drop for Compiled {
+    fn drop(&mut self) {
+        if let Some(jit) = self.jit.take() {
+            // SAFETY: the code is only reachable through `self.codes`, used only by
+            // `&self` methods, none of which can be running while `self` is dropped.
+            unsafe { jit.free_memory() };
+        }
+    }
+}
+
+// SAFETY: the only fields that are not `Send` are the entry pointers, which point into
+// code owned by `jit` (a `Send` `JITModule`) and move with it.
+unsafe impl Send for Compiled {}
+// SAFETY: `&self` methods never touch `jit`; they read the immutable entry pointers and
+// tables, and the generated code and host functions write only the `Context` passed by
+// `&mut` and argument blocks on the calling thread's stack. So one program can be
+// evaluated from many threads at once, each with its own context.
+unsafe impl Sync for Compiled {}
+// SAFETY: the raw pointers in a context are null except during `Compiled::run`, which
+// holds the context by `&mut` and clears them before returning.
+unsafe impl Send for Context {}

@@ -1,0 +1,169 @@
+//! The JIT's safe API: entry points by name, calls with arguments, host variables,
+//! contexts, limits, and errors instead of crashes.
+
+use radc_jit::{Jit, JitError};
+use radc_lang::FileId;
+use radc_lang::cal::eval::{EvalError, Warning};
+use radc_lang::cal::{Env, Module};
+
+fn module(src: &str) -> Module {
+    let mut m = Module::new(&Env::rcalc());
+    let d = m.add_source(FileId(0), src);
+    assert!(d.iter().all(|d| !d.is_error()), "{d:?}");
+    m.optimize();
+    m
+}
+
+#[test]
+fn variables_functions_and_outputs_by_name() {
+    let m = module("a = 2*b; b = 3; sq(x) = x*x; hyp(x, y) = sqrt(sq(x) + sq(y)); $2 = a + 1");
+    let c = Jit::new()
+        .compile(&m, &["a", "hyp", "$2"])
+        .expect("compiles");
+    let mut ctx = c.context();
+    ctx.next_record();
+    let a = c.entry("a").expect("a");
+    assert_eq!(c.eval_no_input(a, &mut ctx), Ok(6.0));
+    let hyp = c.entry("hyp").expect("hyp");
+    let mut none = radc_lang::cal::eval::NoInput;
+    assert_eq!(c.call(hyp, &[3.0, 4.0], &mut ctx, &mut none), Ok(5.0));
+    assert_eq!(
+        c.call(hyp, &[3.0], &mut ctx, &mut none),
+        Err(EvalError::TooFewArguments("hyp".into()))
+    );
+    let out = c.entry("$2").expect("$2");
+    assert_eq!(c.eval_no_input(out, &mut ctx), Ok(7.0));
+}
+
+#[test]
+fn unknown_entries_are_errors() {
+    let m = module("a = 1; $1 = a");
+    assert!(matches!(
+        Jit::new().compile(&m, &["nosuch"]),
+        Err(JitError::UnknownEntry(_))
+    ));
+    assert!(matches!(
+        Jit::new().compile(&m, &["$3"]),
+        Err(JitError::UnknownEntry(_))
+    ));
+}
+
+#[test]
+fn only_reachable_definitions_are_compiled() {
+    let m = module(
+        "a = b + f(c); b = 2*c; c = $1; f(x) = g(x); g(x) = x; unused = a*nosuch; \
+         other(x) = x + 1; h(p, x) = p(x); k = h(g, 1)",
+    );
+    let c = Jit::new().compile(&m, &["a"]).expect("compiles");
+    // a, b, c, f, g
+    assert_eq!(c.function_count(), 5);
+    let c = Jit::new().compile(&m, &["k"]).expect("compiles");
+    // k, h, g
+    assert_eq!(c.function_count(), 3);
+}
+
+#[test]
+fn host_variables_come_from_the_context() {
+    let mut m = module("$1 = recno * 2");
+    m.set_variable("recno", 0.0);
+    let c = Jit::new()
+        .with_host_variables(&["recno", "nosuch"])
+        .compile(&m, &["$1"])
+        .expect("compiles");
+    let mut ctx = c.context();
+    let k = c.host_index("recno").expect("recno resolves");
+    assert_eq!(c.host_index("nosuch"), None);
+    ctx.set_host(k, 21.0);
+    ctx.next_record();
+    let e = c.entry("$1").expect("$1");
+    assert_eq!(c.eval_no_input(e, &mut ctx), Ok(42.0));
+}
+
+#[test]
+fn values_are_cached_per_record() {
+    // Each fresh evaluation of `x` divides by zero once, and warns.
+    let m = module("x = 1/z + 1; z = 0; y = x + x");
+    let c = Jit::new().compile(&m, &["y"]).expect("compiles");
+    let mut ctx = c.context();
+    let y = c.entry("y").expect("y");
+    ctx.next_record();
+    assert_eq!(c.eval_no_input(y, &mut ctx), Ok(2.0));
+    assert_eq!(c.eval_no_input(y, &mut ctx), Ok(2.0));
+    assert_eq!(ctx.take_warnings(), [Warning::DivisionByZero]);
+    ctx.next_record();
+    assert_eq!(c.eval_no_input(y, &mut ctx), Ok(2.0));
+    assert_eq!(ctx.take_warnings(), [Warning::DivisionByZero]);
+}
+
+#[test]
+fn a_context_belongs_to_its_program() {
+    let m = module("a = 1");
+    let c1 = Jit::new().compile(&m, &["a"]).expect("compiles");
+    let c2 = Jit::new().compile(&m, &["a"]).expect("compiles");
+    let mut ctx = c2.context();
+    let a = c1.entry("a").expect("a");
+    assert!(c1.eval_no_input(a, &mut ctx).is_err());
+}
+
+#[test]
+fn runaway_recursion_is_an_error_not_a_crash() {
+    let m = module("down(n) = if(n, 1 + down(n-1), 0); selfref = selfref + 1");
+    let c = Jit::new()
+        .compile(&m, &["down", "selfref"])
+        .expect("compiles");
+    let mut ctx = c.context();
+    ctx.next_record();
+    let mut none = radc_lang::cal::eval::NoInput;
+    let down = c.entry("down").expect("down");
+    assert_eq!(c.call(down, &[50.0], &mut ctx, &mut none), Ok(50.0));
+    let deep = c.call(down, &[1e7], &mut ctx, &mut none);
+    assert!(matches!(deep, Err(EvalError::TooDeep(_))), "{deep:?}");
+    let s = c.entry("selfref").expect("selfref");
+    assert!(matches!(
+        c.eval_no_input(s, &mut ctx),
+        Err(EvalError::TooDeep(_))
+    ));
+    // The context is still usable afterwards.
+    assert_eq!(c.call(down, &[3.0], &mut ctx, &mut none), Ok(3.0));
+}
+
+#[test]
+fn oversized_programs_are_declined() {
+    let src = format!("$1 = {}$1{}", "sin(".repeat(1200), ")".repeat(1200));
+    let result = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(move || {
+            let m = module(&src);
+            Jit::new().compile(&m, &["$1"]).err()
+        })
+        .expect("thread")
+        .join()
+        .expect("no panic");
+    assert!(matches!(result, Some(JitError::TooLarge(_))), "{result:?}");
+}
+
+#[test]
+fn one_program_many_threads() {
+    fn shareable<T: Send + Sync>() {}
+    fn sendable<T: Send>() {}
+    shareable::<radc_jit::Compiled>();
+    sendable::<radc_jit::Context>();
+    let m = module("f(x) = if(x, x*f(x-1), 1); sq(x) = x*x");
+    let c = Jit::new().compile(&m, &["f", "sq"]).expect("compiles");
+    std::thread::scope(|s| {
+        for t in 0..4 {
+            let c = &c;
+            s.spawn(move || {
+                let mut ctx = c.context();
+                let f = c.entry("f").expect("f");
+                let mut none = radc_lang::cal::eval::NoInput;
+                for i in 0..200 {
+                    ctx.next_record();
+                    let n = f64::from((i + t) % 10);
+                    let want: f64 = (1..=((i + t) % 10)).map(f64::from).product();
+                    assert_eq!(c.call(f, &[n], &mut ctx, &mut none), Ok(want));
+                }
+            });
+        }
+    });
+}
