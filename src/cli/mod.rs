@@ -33,14 +33,19 @@ const COMMANDS: &[Command] = &[
         run: check::run,
     },
     Command {
-        name: "doc",
-        summary: "primitive type reference: 'doc types', 'doc plastic', 'doc codes'",
-        run: doc::doc,
+        name: "calc",
+        summary: "evaluate calcomp expressions over records (rcalc-compatible)",
+        run: calc::run,
     },
     Command {
-        name: "explain",
-        summary: "what a diagnostic code means: 'explain E0301'",
-        run: doc::explain,
+        name: "trace",
+        summary: "trace rays from stdin through a scene, like rtrace",
+        run: trace::run,
+    },
+    Command {
+        name: "render",
+        summary: "render a scene to a Radiance picture, like rpict",
+        run: render::run,
     },
     Command {
         name: "fmt",
@@ -53,26 +58,6 @@ const COMMANDS: &[Command] = &[
         run: lsp::run,
     },
     Command {
-        name: "render",
-        summary: "render a scene to a Radiance picture, like rpict",
-        run: render::run,
-    },
-    Command {
-        name: "trace",
-        summary: "trace rays from stdin through a scene, like rtrace",
-        run: trace::run,
-    },
-    Command {
-        name: "help",
-        summary: "list the commands",
-        run: help,
-    },
-    Command {
-        name: "calc",
-        summary: "evaluate calcomp expressions over records (rcalc-compatible)",
-        run: calc::run,
-    },
-    Command {
         name: "genbox",
         summary: "generate a box, as Radiance's genbox",
         run: generate::genbox,
@@ -83,14 +68,14 @@ const COMMANDS: &[Command] = &[
         run: generate::genprism,
     },
     Command {
-        name: "gensky",
-        summary: "generate a CIE sky and sun, as Radiance's gensky",
-        run: generate::gensky,
-    },
-    Command {
         name: "genrev",
         summary: "generate a surface of revolution, as Radiance's genrev",
         run: generate::genrev,
+    },
+    Command {
+        name: "gensky",
+        summary: "generate a CIE sky and sun, as Radiance's gensky",
+        run: generate::gensky,
     },
     Command {
         name: "gensurf",
@@ -106,6 +91,21 @@ const COMMANDS: &[Command] = &[
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,
+    },
+    Command {
+        name: "doc",
+        summary: "primitive type reference: 'doc types', 'doc plastic', 'doc codes'",
+        run: doc::doc,
+    },
+    Command {
+        name: "explain",
+        summary: "what a diagnostic code means: 'explain E0301'",
+        run: doc::explain,
+    },
+    Command {
+        name: "help",
+        summary: "list the commands",
+        run: help,
     },
 ];
 
