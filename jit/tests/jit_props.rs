@@ -211,8 +211,20 @@ fn compare(src: &str, rows: &[String], nonfinite: bool) -> Result<(), TestCaseEr
     Ok(())
 }
 
+/// 256 cases unless `PROPTEST_CASES` asks for more (or fewer).
+fn config() -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(256);
+    ProptestConfig {
+        cases,
+        ..ProptestConfig::default()
+    }
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+    #![proptest_config(config())]
 
     #[test]
     fn jit_matches_interpreter(src in program(), rows in rows(), nonfinite in any::<bool>()) {
