@@ -78,9 +78,11 @@ fn expr(
 
 const G_NAMES: &[&str] = &["x", "$1"];
 const F_NAMES: &[&str] = &["x", "y", "$2"];
-const B_NAMES: &[&str] = &["$1", "$2", "$3", "recno"];
-const C_NAMES: &[&str] = &["PI"];
-const A_NAMES: &[&str] = &["$1", "$2", "b", "c"];
+// Self-references (`a` in `a`, `c` in `c`) and the cycle through `a` and `b` see the
+// previous value.
+const B_NAMES: &[&str] = &["$1", "$2", "$3", "recno", "a"];
+const C_NAMES: &[&str] = &["PI", "c"];
+const A_NAMES: &[&str] = &["$1", "$2", "b", "c", "a"];
 const OUT_NAMES: &[&str] = &["$1", "$2", "$3", "a", "b", "c"];
 const G_CALLS: &[(&str, usize)] = &[];
 const F_CALLS: &[(&str, usize)] = &[("g", 1)];
