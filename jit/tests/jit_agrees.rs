@@ -58,8 +58,10 @@ fn bits(run: &Run) -> Vec<String> {
             let vals = |o: &Outputs| {
                 o.iter()
                     .map(|(c, v)| {
+                        // rcalc prints a NaN's sign (`-nan`), not its payload.
                         if v.is_nan() {
-                            format!("{c}:nan")
+                            let sign = if v.is_sign_negative() { "-" } else { "+" };
+                            format!("{c}:{sign}nan")
                         } else {
                             format!("{c}:{:016x}", v.to_bits())
                         }
@@ -232,6 +234,69 @@ fn deep_recursion_warns() {
         "down(n)=if(n,down(n-1),0); $1=down($1)",
         &["50", "150", "1500"],
     );
+}
+
+#[test]
+fn deeper_than_the_recursion_limit() {
+    // 20,000 levels, then "recursion too deep", in both engines.
+    agree(
+        "down(n)=if(n,down(n-1),0); $1=down($1)",
+        &["19990", "25000"],
+    );
+}
+
+/// The finalised evaluator's rules (the reference rcalc's -ffast-math build).
+#[test]
+fn reference_build_quirks() {
+    // NaN operand order: the first NaN operand is the result.
+    agree(
+        "$1=$1+$2;$2=$2+$1;$3=$1-$2;$4=$2-$1;$5=$1*$2;$6=$2*$1*3;$7=-$1",
+        &["nan\t-nan", "-nan\tnan", "nan\t1", "1\t-nan"],
+    );
+    // Zero and NaN denominators are the result, with a warning.
+    agree(
+        "$1=1/$1;$2=$2/$1;$3=sin(1/$1);$4=1/-$1;$5=$1/$1",
+        &["0\t1", "-0\t1", "nan\t2", "-nan\t2", "2\t3"],
+    );
+    // `^` and atan2 evaluate right to left.
+    agree(
+        "$1=(1/$1)^(sqrt(-1)+0*exp(1000));$2=atan2(1/$1,exp(1e4));$3=atan2(exp(1e4),1/$1);\
+         $4=(exp(1e4))^(1/$1)",
+        &["0", "2"],
+    );
+    agree_with(
+        "$1=(sqrt(-1))^(exp(1e4));$2=atan2(sqrt(-1),exp(1e4));$3=(1/$1)^(log(-1))",
+        &["0", "2"],
+        MathErrors::NonFinite,
+    );
+    // floor and ceil never give -0; min and max NaN rules.
+    agree(
+        "$1=floor($1);$2=ceil($1);$3=ceil(-0.5);$4=floor(-0);\
+         $5=max($1,$2);$6=min($2,$1);$7=max(0,-0);$8=max(-0,0);$9=min($2,1,2)",
+        &["-0\tnan", "-0.5\t1", "nan\t-0", "3.5\t-nan"],
+    );
+    // select: out of range is a domain error; past C's int, fatal.
+    agree("$1=select($1,10,20)", &["1", "2", "3", "-1", "nan", "-0.6"]);
+    agree("$1=select($1,10,20)", &["1", "1e10"]);
+    agree("$1=select($1,10,20)", &["1", "2147483647.5"]);
+    agree("$1=select($1,10,20)", &["1", "2147483647.4"]);
+    agree("$1=select($1,10,20)", &["1", "inf"]);
+    agree("$1=select($1,10,20)", &["1", "-1e10"]);
+    agree("f(p)=p(1e10,1,2); $1=f(select)", &["1"]);
+    agree("f(p)=p(3,1,2); $1=f(select)+f(atan2)", &["1"]);
+    agree("f(p)=p(1/$1,exp($1*1e4)); $1=f(atan2)", &["0", "1"]);
+}
+
+#[test]
+fn self_references_see_the_previous_value() {
+    agree("a=a+1;$1=a;$2=a*2", &["1", "2", "3"]);
+    agree("a=b+$1;b=a*2;$1=a;$2=b", &["1", "2", "3"]);
+    agree("a=b+$1;b=a*2;$1=b;$2=a", &["1", "2", "3"]);
+    agree("c:c+1;$1=c;$2=c", &["1", "2"]);
+    agree("n=if(n-2,n+1,$1);$1=n", &["5", "7", "9", "11"]);
+    // A fatal error inside a self-referring definition leaves its old value.
+    agree("a=a+select($1,1,2);$1=a", &["1", "2", "1e10", "1"]);
+    agree("f(x)=f(x)+1;a=f(a);$1=a", &["1"]);
 }
 
 #[test]

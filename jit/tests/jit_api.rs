@@ -118,28 +118,53 @@ fn runaway_recursion_is_an_error_not_a_crash() {
     assert_eq!(c.call(down, &[50.0], &mut ctx, &mut none), Ok(50.0));
     let deep = c.call(down, &[1e7], &mut ctx, &mut none);
     assert!(matches!(deep, Err(EvalError::TooDeep(_))), "{deep:?}");
+    // A variable referring to itself sees its previous value (caldefn.c stamps it
+    // before evaluating): it counts records instead of recursing.
     let s = c.entry("selfref").expect("selfref");
-    assert!(matches!(
-        c.eval_no_input(s, &mut ctx),
-        Err(EvalError::TooDeep(_))
-    ));
+    assert_eq!(c.eval_no_input(s, &mut ctx), Ok(1.0));
+    assert_eq!(c.eval_no_input(s, &mut ctx), Ok(1.0));
+    ctx.next_record();
+    assert_eq!(c.eval_no_input(s, &mut ctx), Ok(2.0));
     // The context is still usable afterwards.
     assert_eq!(c.call(down, &[3.0], &mut ctx, &mut none), Ok(3.0));
 }
 
 #[test]
 fn oversized_programs_are_declined() {
-    let src = format!("$1 = {}$1{}", "sin(".repeat(1200), ")".repeat(1200));
-    let result = std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(move || {
-            let m = module(&src);
-            Jit::new().compile(&m, &["$1"]).err()
-        })
-        .expect("thread")
-        .join()
-        .expect("no panic");
-    assert!(matches!(result, Some(JitError::TooLarge(_))), "{result:?}");
+    // The parser refuses statements past 1000 operators or 50 nested parentheses, so
+    // the JIT's own limits bound whole programs: exercised here with small limits.
+    let mut src = String::from("v0 = $1;\n");
+    for i in 1..200 {
+        src.push_str(&format!("v{i} = sin(v{}) + v{} * 2;\n", i - 1, i - 1));
+    }
+    src.push_str(&format!(
+        "$1 = {}$1{};\n",
+        "sin(".repeat(40),
+        ")".repeat(40)
+    ));
+    src.push_str("$2 = v199;\n");
+    let m = module(&src);
+    // Within the defaults: compiled.
+    assert!(Jit::new().compile(&m, &["$1", "$2"]).is_ok());
+    // Too many nodes across the definitions an entry reaches.
+    let nodes = Jit::new()
+        .with_size_limits(500, 1000)
+        .compile(&m, &["$2"])
+        .err();
+    assert!(matches!(nodes, Some(JitError::TooLarge(_))), "{nodes:?}");
+    // Nested too deep.
+    let deep = Jit::new()
+        .with_size_limits(1_000_000, 30)
+        .compile(&m, &["$1"])
+        .err();
+    assert!(matches!(deep, Some(JitError::TooLarge(_))), "{deep:?}");
+    // Each limit alone: the shallow entry passes the nesting limit.
+    assert!(
+        Jit::new()
+            .with_size_limits(1_000_000, 30)
+            .compile(&m, &["$2"])
+            .is_ok()
+    );
 }
 
 #[test]

@@ -78,9 +78,11 @@ fn expr(
 
 const G_NAMES: &[&str] = &["x", "$1"];
 const F_NAMES: &[&str] = &["x", "y", "$2"];
-const B_NAMES: &[&str] = &["$1", "$2", "$3", "recno"];
-const C_NAMES: &[&str] = &["PI"];
-const A_NAMES: &[&str] = &["$1", "$2", "b", "c"];
+// Self-references (`a` in `a`, `c` in `c`) and the cycle through `a` and `b` see the
+// previous value.
+const B_NAMES: &[&str] = &["$1", "$2", "$3", "recno", "a"];
+const C_NAMES: &[&str] = &["PI", "c"];
+const A_NAMES: &[&str] = &["$1", "$2", "b", "c", "a"];
 const OUT_NAMES: &[&str] = &["$1", "$2", "$3", "a", "b", "c"];
 const G_CALLS: &[(&str, usize)] = &[];
 const F_CALLS: &[(&str, usize)] = &[("g", 1)];
@@ -211,8 +213,20 @@ fn compare(src: &str, rows: &[String], nonfinite: bool) -> Result<(), TestCaseEr
     Ok(())
 }
 
+/// 256 cases unless `PROPTEST_CASES` asks for more (or fewer).
+fn config() -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(256);
+    ProptestConfig {
+        cases,
+        ..ProptestConfig::default()
+    }
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+    #![proptest_config(config())]
 
     #[test]
     fn jit_matches_interpreter(src in program(), rows in rows(), nonfinite in any::<bool>()) {

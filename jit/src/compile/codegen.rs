@@ -250,20 +250,25 @@ impl<'m> State<'m> {
 }
 
 /// The size and nesting of everything the entries reach, refused past the limits.
-pub fn check_size(module: &Module, roots: &[&Expr], defs: &[DefId]) -> Result<(), JitError> {
+pub fn check_size(
+    module: &Module,
+    roots: &[&Expr],
+    defs: &[DefId],
+    (max_nodes, max_nesting): (usize, usize),
+) -> Result<(), JitError> {
     let mut nodes = 0usize;
     let mut stack: Vec<(&Expr, usize)> = roots.iter().map(|e| (*e, 1)).collect();
     stack.extend(defs.iter().map(|&d| (&module.def(d).body, 1)));
     while let Some((e, depth)) = stack.pop() {
         nodes += 1;
-        if depth > MAX_NESTING {
+        if depth > max_nesting {
             return Err(JitError::TooLarge(format!(
-                "expression nested deeper than {MAX_NESTING} levels"
+                "expression nested deeper than {max_nesting} levels"
             )));
         }
-        if nodes > MAX_NODES {
+        if nodes > max_nodes {
             return Err(JitError::TooLarge(format!(
-                "more than {MAX_NODES} expression nodes"
+                "more than {max_nodes} expression nodes"
             )));
         }
         stack.extend(e.children().into_iter().map(|c| (c, depth + 1)));

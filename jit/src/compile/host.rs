@@ -99,6 +99,7 @@ fn error(raw: &Raw, code: u32, sym: u32) -> EvalError {
         E_NOT_FUNCTION => EvalError::ArgumentNotFunction(name),
         E_ILLEGAL_CHANNEL => EvalError::IllegalChannel,
         E_NOT_AVAILABLE => EvalError::NotAvailable(name),
+        E_BAD_CALL => EvalError::BadArgumentCall,
         _ => EvalError::TooDeep(name),
     }
 }
@@ -326,6 +327,9 @@ fn builtin(raw: &mut Raw, block: *mut Block, sym: u32, b: Builtin) -> Option<f64
                 0.0
             } else if n == 0 {
                 (nargs - 1) as f64
+            } else if n < 0 {
+                raw.fail(EvalError::BadArgumentCall);
+                return None;
             } else {
                 arg(raw, n as u64 + 1)?
             }
@@ -347,9 +351,10 @@ fn builtin(raw: &mut Raw, block: *mut Block, sym: u32, b: Builtin) -> Option<f64
             }
             best
         }
+        // Arguments right to left, as the interpreter.
         Builtin::Atan2 => {
-            let y = arg(raw, 1)?;
             let x = arg(raw, 2)?;
+            let y = arg(raw, 1)?;
             y.atan2(x)
         }
         other => {

@@ -161,3 +161,4 @@ pub const E_NOT_FUNCTION: u32 = 3;
 pub const E_ILLEGAL_CHANNEL: u32 = 4;
 pub const E_NOT_AVAILABLE: u32 = 5;
 pub const E_TOO_DEEP: u32 = 6;
+pub const E_BAD_CALL: u32 = 7;

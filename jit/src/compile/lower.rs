@@ -45,6 +45,9 @@ pub struct Lower<'a, 'b, 'm> {
     /// variable's cached value not within a record, so later uses reuse them.
     known_args: HashMap<(u8, u32), Value>,
     abort: Option<ir::Block>,
+    /// A variable body's abort path: the block, the cache, the slot's offset and
+    /// the stamp to put back; emitted after the body.
+    restore: Option<(ir::Block, Value, i32, Value)>,
 }
 
 fn mem() -> MemFlagsData {
@@ -78,6 +81,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             thunk_sig: None,
             known_args: HashMap::new(),
             abort: None,
+            restore: None,
         };
         let v = match job {
             Job::Var(d) => lw.var_body(d)?,
@@ -91,6 +95,12 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             },
         };
         lw.b.ins().return_(&[v]);
+        if let Some((block, cache, off, before)) = lw.restore {
+            lw.b.switch_to_block(block);
+            lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
+            let zero = lw.b.ins().f64const(0.0);
+            lw.b.ins().return_(&[zero]);
+        }
         if let Some(abort) = lw.abort {
             lw.b.switch_to_block(abort);
             let zero = lw.b.ins().f64const(0.0);
@@ -318,8 +328,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = self.cached_value(idx);
         self.b.ins().return_(&[v]);
         self.b.switch_to_block(miss);
-        let v = self.expr(&d.body)?;
-        self.check_failed();
+        // The stamp is set before evaluating, as caldefn.c does: a definition that
+        // refers to itself (directly or through others) sees its previous value.
         let tick = if is_constant(module, def) {
             self.i64c(FOREVER)
         } else {
@@ -327,8 +337,19 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         };
         let cache = self.load_raw(self.st.ptr, OFF_CACHE);
         let off = idx as i32 * CACHED_SIZE;
+        let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
+        // A fatal error in the body leaves the slot as it was: every abort from
+        // here on restores the stamp first.
+        let outer_abort = self.abort.take();
+        let restore = self.b.create_block();
+        self.b.set_cold_block(restore);
+        self.abort = Some(restore);
+        let v = self.expr(&d.body)?;
+        self.check_failed();
         self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
+        self.restore = Some((restore, cache, off, before));
+        self.abort = outer_abort;
         Ok(v)
     }
 
@@ -358,17 +379,22 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 let mut acc = self.f64c(0.0);
                 for x in v {
                     let x = self.expr(x)?;
-                    acc = self.b.ins().fadd(acc, x);
+                    let r = self.b.ins().fadd(acc, x);
+                    acc = self.nan_first(acc, x, r);
                 }
                 acc
             }
-            // From 1; `1 * x` is `x` to the bit, so the first factor starts.
+            // From 1; `1 * x` is `x` to the bit (a NaN `x` included, which
+            // `nan_first` would return), so the first factor starts.
             Node::Product(v) => {
                 let mut acc: Option<Value> = None;
                 for x in v {
                     let x = self.expr(x)?;
                     acc = Some(match acc {
-                        Some(a) => self.b.ins().fmul(a, x),
+                        Some(a) => {
+                            let r = self.b.ins().fmul(a, x);
+                            self.nan_first(a, x, r)
+                        }
                         None => x,
                     });
                 }
@@ -380,7 +406,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Node::Sub(a, b) => {
                 let x = self.expr(a)?;
                 let y = self.expr(b)?;
-                self.b.ins().fsub(x, y)
+                let r = self.b.ins().fsub(x, y);
+                self.nan_first(x, y, r)
             }
             Node::Div(a, b) => self.divide(a, b)?,
             Node::Pow(a, b) => self.power(a, b)?,
@@ -391,24 +418,34 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         })
     }
 
-    /// calexpr.c `edivi`: the denominator first; division by zero warns, sets
-    /// `errno` and gives 0 without evaluating the numerator.
+    /// `Evaluator`'s `nan_first`: with a NaN operand, the first NaN operand itself
+    /// (x86 keeps the destination's NaN, and the order is the reference rcalc's);
+    /// otherwise the computed result.
+    fn nan_first(&mut self, first: Value, second: Value, result: Value) -> Value {
+        let second_nan = self.b.ins().fcmp(FloatCC::Unordered, second, second);
+        let r = self.b.ins().select(second_nan, second, result);
+        let first_nan = self.b.ins().fcmp(FloatCC::Unordered, first, first);
+        self.b.ins().select(first_nan, first, r)
+    }
+
+    /// calexpr.c `edivi` under the reference build's -ffast-math: the denominator
+    /// first; a zero or NaN denominator warns, sets `errno` and is itself the result,
+    /// without evaluating the numerator.
     fn divide(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
         let den = self.expr(b)?;
-        if b.as_num().is_some_and(|v| v != 0.0) {
+        if b.as_num().is_some_and(|v| v != 0.0 && !v.is_nan()) {
             let num = self.expr(a)?;
             return Ok(self.b.ins().fdiv(num, den));
         }
         let zero = self.f64c(0.0);
-        let is_zero = self.b.ins().fcmp(FloatCC::Equal, den, zero);
+        let is_zero = self.b.ins().fcmp(FloatCC::UnorderedOrEqual, den, zero);
         let (j, out) = self.join();
         let (z, nz) = self.cold_branch(is_zero);
         self.b.switch_to_block(z);
         let w = self.i32c(W_DIVISION);
         self.warn(w, NO_SYM);
         self.set_errno(ERRNO_RANGE);
-        let zero = self.f64c(0.0);
-        self.jump_with(j, zero);
+        self.jump_with(j, den);
         self.b.switch_to_block(nz);
         let known = self.known_args.clone();
         let num = self.expr(a)?;
@@ -419,13 +456,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         Ok(out)
     }
 
-    /// calexpr.c `epow`: `errno` cleared, both sides, the C library's `pow`. No
+    /// calexpr.c `epow`: `errno` cleared, both sides (the exponent first: the
+    /// reference build evaluates C arguments right to left), the C library's `pow`. No
     /// `x*x` fast path for integer exponents: the C library's `pow` is not specified
     /// to round as a product does, and results must equal the interpreter's.
     fn power(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
         self.set_errno(ERRNO_NONE);
-        let x = self.expr(a)?;
         let y = self.expr(b)?;
+        let x = self.expr(a)?;
         let d = self.call_import_f64("radc_pow", &[x, y]);
         self.nonfinite(d);
         let errno = self.load_raw(types::I64, OFF_ERRNO);
@@ -886,17 +924,27 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 }
                 best
             }
+            // Arguments right to left, as for `^`.
             Builtin::Atan2 => {
-                let y = self.lib_arg(args, 0, sym)?;
                 let x = self.lib_arg(args, 1, sym)?;
+                let y = self.lib_arg(args, 0, sym)?;
                 self.call_import_f64("radc_atan2", &[y, x])
             }
-            // Exact operations: the hardware instruction is the C library's result.
+            // Exact operations: the hardware instruction is the C library's result,
+            // except that the reference rcalc's floor and ceil never give -0.
             Builtin::Floor | Builtin::Ceil | Builtin::Sqrt => {
                 let x = self.lib_arg(args, 0, sym)?;
                 match b {
-                    Builtin::Floor => self.b.ins().floor(x),
-                    Builtin::Ceil => self.b.ins().ceil(x),
+                    Builtin::Floor | Builtin::Ceil => {
+                        let r = if b == Builtin::Floor {
+                            self.b.ins().floor(x)
+                        } else {
+                            self.b.ins().ceil(x)
+                        };
+                        let zero = self.f64c(0.0);
+                        let is_zero = self.b.ins().fcmp(FloatCC::Equal, r, zero);
+                        self.b.ins().select(is_zero, zero, r)
+                    }
                     _ => self.b.ins().sqrt(x),
                 }
             }
@@ -925,10 +973,16 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let nan = self.b.ins().fcmp(FloatCC::Unordered, a1, a1);
         let lim = self.f64c(-0.5);
         let low = self.b.ins().fcmp(FloatCC::LessThan, a1, lim);
+        // Past C's int, `(int)(x + .5)` is INT_MIN (`c_round`): not out of range
+        // above, but "Bad call to argument!" below.
+        let int_limit = self.f64c(2_147_483_648.0);
+        let big = self.b.ins().fcmp(FloatCC::GreaterThanOrEqual, r, int_limit);
         let high = self
             .b
             .ins()
             .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, n, nargs);
+        let fits = self.b.ins().bxor_imm_u(big, 1);
+        let high = self.b.ins().band(high, fits);
         let bad = self.b.ins().bor(nan, low);
         let bad = self.b.ins().bor(bad, high);
         let (j, out) = self.join();
@@ -936,6 +990,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(dom);
         self.set_errno(ERRNO_DOMAIN);
         let zero = self.f64c(0.0);
+        self.jump_with(j, zero);
+        self.b.switch_to_block(ok);
+        let (huge, ok) = self.cold_branch(big);
+        self.b.switch_to_block(huge);
+        let zero = self.fail(E_BAD_CALL, sym);
         self.jump_with(j, zero);
         self.b.switch_to_block(ok);
         for k in 0..args.len() {

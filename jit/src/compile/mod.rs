@@ -69,6 +69,8 @@ impl std::error::Error for JitError {}
 pub struct Jit {
     policy: MathErrors,
     host_variables: Vec<String>,
+    /// `(nodes, nesting)` in place of [`codegen::MAX_NODES`], [`codegen::MAX_NESTING`].
+    limits: Option<(usize, usize)>,
 }
 
 /// A compiled entry point, from [`Compiled::entry`].
@@ -101,6 +103,15 @@ impl Jit {
     /// Which non-finite results count as errors (as `Evaluator::with_policy`).
     pub fn with_policy(mut self, policy: MathErrors) -> Self {
         self.policy = policy;
+        self
+    }
+
+    /// Decline programs (with [`JitError::TooLarge`]) whose reachable expressions
+    /// have more than `nodes` nodes or nest deeper than `nesting` levels, instead of
+    /// the defaults (2,000,000 nodes, 1000 levels). The parser's own limits keep
+    /// single statements well within the defaults; these bound whole programs.
+    pub fn with_size_limits(mut self, nodes: usize, nesting: usize) -> Self {
+        self.limits = Some((nodes, nesting));
         self
     }
 
@@ -152,7 +163,10 @@ impl Jit {
             }
         }
         let defs = codegen::reachable(module, &roots, &syms);
-        codegen::check_size(module, &roots, &defs)?;
+        let limits = self
+            .limits
+            .unwrap_or((codegen::MAX_NODES, codegen::MAX_NESTING));
+        codegen::check_size(module, &roots, &defs, limits)?;
 
         let mut state = State::new(module, self.policy)?;
         let mut host_names = Vec::new();
