@@ -392,7 +392,13 @@ pub(super) fn load_scene(
 ) -> Result<Scene, ExitCode> {
     let mut sources = Sources::default();
     let mut diags = Vec::new();
-    let ir = super::check::check_scene(paths, false, &mut sources, &mut diags);
+    let ir = super::check::check_scene(
+        paths,
+        false,
+        radc_lang::scene::Keep::Everything,
+        &mut sources,
+        &mut diags,
+    );
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     // A `!` command's output is part of the scene Radiance renders; without it the
     // numbers would be silently wrong.
