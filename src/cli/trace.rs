@@ -429,7 +429,7 @@ pub(super) fn load_scene(
                 .get(p.prim)
                 .and_then(|prim| {
                     let s = sources.get(prim.span.file)?;
-                    let (line, col) = s.lines.line_col(&s.text, prim.span.start as usize);
+                    let (line, col) = s.lines().line_col(&s.text, prim.span.start as usize);
                     Some(format!("{}:{line}:{col}: ", s.name))
                 })
                 .unwrap_or_default();
