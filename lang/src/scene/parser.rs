@@ -683,7 +683,8 @@ mod tests {
             &[
                 "void", "m", "alias", "inherit", "plastic", "polygon", "sphere", "plastc", "0",
                 "1", "3", "5", "9", "12", "-1", "5.0", ".5", "1e400", "x", "\"a b\"", "'q'",
-                "\"open", "#", "# c d", "#x", "!cmd", "!a b", "\\", "\n", "\n", "\n",
+                "\"open", "#", "# c d", "#x", "!cmd", "!a b", "\\", "\n", "\n", "\n", "x\u{0}y",
+                "5\u{0}",
             ][..],
         );
         let statement = prop_oneof![
