@@ -211,7 +211,15 @@ pub fn lex(text: &str) -> Vec<(Token<'_>, std::ops::Range<usize>)> {
 pub fn unquote(word: &str) -> std::borrow::Cow<'_, str> {
     // Radiance keeps words in C strings: a NUL ends the word's value, though the
     // characters after it up to the next space are still consumed.
-    let word = word.split('\0').next().unwrap_or("");
+    // Nearly every word has neither a NUL nor a quote: one pass finds out.
+    let Some(special) = word.bytes().position(|b| matches!(b, 0 | b'"' | b'\'')) else {
+        return std::borrow::Cow::Borrowed(word);
+    };
+    let word = match word.as_bytes()[special..].iter().position(|&b| b == 0) {
+        // A NUL is ASCII, so cutting there keeps the text valid.
+        Some(nul) => word.get(..special + nul).unwrap_or(""),
+        None => word,
+    };
     if !word.bytes().any(|b| b == b'"' || b == b'\'') {
         return std::borrow::Cow::Borrowed(word);
     }
@@ -307,6 +315,18 @@ mod tests {
         assert_eq!(toks[2], (TokenKind::Unterminated, "\"g", false));
         assert_eq!(unquote(r#"a"b c"d"#), "ab cd");
         assert_eq!(unquote(r#"it"'"s"#), "it's");
+        assert_eq!(unquote("ab\0cd"), "ab");
+        assert_eq!(unquote("'a\0b'"), "a");
+        assert_eq!(unquote("\0"), "");
+    }
+
+    proptest::proptest! {
+        /// The one-pass fast path cuts at the first NUL exactly as splitting does.
+        #[test]
+        fn unquote_cuts_at_the_first_nul(word in "[ab\"' \u{0}é]{0,12}") {
+            let cut = word.split('\0').next().unwrap_or("");
+            proptest::prop_assert_eq!(unquote(&word), unquote(cut));
+        }
     }
 
     #[test]
