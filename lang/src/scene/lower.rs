@@ -116,6 +116,12 @@ pub struct Lowering<'a> {
     last_schema: Option<&'static PrimitiveType>,
     /// A polygon's vertices, reused while surfaces are checked but not kept.
     vertices: Vec<Vec3>,
+    /// `FileLookup::exists` answers by (name, kind, file naming it): generators name
+    /// one function file thousands of times, and the disk does not change meanwhile.
+    exists: HashMap<(String, FileKind, FileId), bool>,
+    /// Undefined names each entry point of a function file reaches, by (file key,
+    /// entry): the same few functions are evaluated for thousands of primitives.
+    reached: HashMap<(String, String), Vec<(String, Span)>>,
     /// Names defined by primitives of unknown type: uses are not reported again.
     unknown: HashSet<String>,
     used: HashSet<PrimId>,
@@ -147,6 +153,8 @@ impl<'a> Lowering<'a> {
             current_kept: true,
             last_schema: None,
             vertices: Vec::new(),
+            exists: HashMap::new(),
+            reached: HashMap::new(),
             unknown: HashSet::new(),
             used: HashSet::new(),
             warn_unused: Vec::new(),
@@ -771,7 +779,16 @@ impl Lowering<'_> {
                 self.more_users.entry(first).or_default().push(me);
                 continue;
             }
-            if !self.files.exists(&w.text, kind, w.span.file) {
+            let key = (w.text.clone(), kind, w.span.file);
+            let exists = match self.exists.get(&key) {
+                Some(&e) => e,
+                None => {
+                    let e = self.files.exists(&w.text, kind, w.span.file);
+                    self.exists.insert(key, e);
+                    e
+                }
+            };
+            if !exists {
                 self.missing_files.insert(w.text.clone(), self.diags.len());
                 self.diags.push(
                     Diagnostic::new(codes::E0305, w.span, format!("file '{}' not found", w.text))
@@ -936,7 +953,11 @@ impl Lowering<'_> {
                 found.push(functions::undefined_in_file(&w.text, &key, w.span, &known));
                 continue;
             }
-            for (name, span) in ff.undefined_reached_from(&w.text) {
+            let reached = self
+                .reached
+                .entry((key.clone(), w.text.clone()))
+                .or_insert_with(|| ff.undefined_reached_from(&w.text));
+            for (name, span) in reached.iter().cloned() {
                 found.push(
                     Diagnostic::new(
                         codes::E0601,
