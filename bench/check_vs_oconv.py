@@ -13,10 +13,15 @@ benchmark needs no checked-in data:
   lathe    genrev vases and a genworm coil with 2,000 segments each, plus spheres
   smooth   gensurf -s 150x150: Phong-smoothed triangles with texfunc normals
 
-Peak memory is each child's own ru_maxrss (os.wait4), so Python's memory is not counted.
+Wall time is the best of N runs. CPU time (user + system, best of N) is printed too: on
+a shared machine it is the steadier figure. Peak memory is the child's ru_maxrss as
+GNU time (/usr/bin/time, Debian package `time`) reports it. Not os.wait4 from here:
+Linux carries the high-water mark across exec, so a child forked from this Python
+would report at least Python's own size (which holds the generated scenes).
 
 Usage (from the repository root):
-  python3 bench/check_vs_oconv.py [--runs 5] [--no-build] [--keep DIR] [--only NAME]
+  python3 bench/check_vs_oconv.py [--runs 5] [--no-build] [--radc PATH] [--keep DIR]
+                                  [--only NAME]
 
 Radiance is found on PATH, or else in the oracle venv (`bash tests/oracle/install.sh`).
 Only the Python standard library is used.
@@ -25,7 +30,6 @@ Only the Python standard library is used.
 import argparse
 import os
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -112,32 +116,53 @@ def scene_smooth(env, d):
 SCENES = {"big": scene_big, "room": scene_room, "lathe": scene_lathe, "smooth": scene_smooth}
 
 
+GNU_TIME = "/usr/bin/time"
+
+
+def cpu_ms(seconds):
+    # The kernel accounts CPU time in 10 ms ticks as GNU time reports it.
+    return "<10ms" if seconds < 0.01 else f"{seconds * 1e3:.0f}ms"
+
+
+def cpu_ratio(radc, oconv):
+    return "-" if radc < 0.01 else f"{oconv / radc:.1f}x"
+
+
 def measure(cmd, env, cwd, runs):
-    """Best wall time and the largest peak RSS (KiB) over `runs` runs."""
-    times, rss, codes = [], [], set()
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        p = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)
-        _, status, usage = os.wait4(p.pid, 0)
-        times.append(time.perf_counter() - t0)
-        rss.append(usage.ru_maxrss)
-        codes.add(os.waitstatus_to_exitcode(status))
-    return min(times), statistics.median(times), max(rss), codes
+    """Best wall time, best CPU time (s), largest peak RSS (KiB) and the exit codes."""
+    times, cpu, rss, codes = [], [], [], set()
+    with tempfile.NamedTemporaryFile("r", suffix=".time") as report:
+        for _ in range(runs):
+            t0 = time.perf_counter()
+            p = subprocess.run([GNU_TIME, "-o", report.name, "-f", "%U %S %M %x", *cmd],
+                               env=env, cwd=cwd, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+            times.append(time.perf_counter() - t0)
+            report.seek(0)
+            # GNU time writes "Command exited with non-zero status N" first when N != 0.
+            user, system, maxrss, code = report.read().split()[-4:]
+            cpu.append(float(user) + float(system))
+            rss.append(int(maxrss))
+            codes.add(int(code))
+            del p
+    return min(times), min(cpu), max(rss), codes
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--no-build", action="store_true", help="use target/release/radc as it is")
+    ap.add_argument("--radc", metavar="PATH", help="the radc binary to measure (implies --no-build)")
     ap.add_argument("--keep", metavar="DIR", help="write the scenes to DIR and keep them")
     ap.add_argument("--only", action="append", choices=list(SCENES), help="run only these scenes")
     args = ap.parse_args()
 
+    if not os.access(GNU_TIME, os.X_OK):
+        sys.exit("GNU time is needed for peak memory: apt-get install time")
     env = radiance_env()
-    if not args.no_build:
+    if not (args.no_build or args.radc):
         subprocess.run(["cargo", "build", "--release", "-q", "-p", "radc"], cwd=ROOT, check=True)
-    radc = ROOT / "target" / "release" / "radc"
+    radc = Path(args.radc).resolve() if args.radc else ROOT / "target" / "release" / "radc"
     oconv = shutil.which("oconv", path=env["PATH"])
 
     tmp = None
@@ -163,14 +188,15 @@ def main():
         rows.append((name, size, prims, summary, r, o))
 
     print(f"\nbest of {args.runs} runs; peak RSS is the largest over the runs\n")
-    head = (f"{'scene':<8} {'size':>8} {'surfaces':>9} | {'radc check':>11} {'oconv':>8} {'speedup':>8}"
-            f" | {'radc RSS':>9} {'oconv RSS':>9} {'ratio':>6}")
+    head = (f"{'scene':<7} {'size':>7} {'surfaces':>8} | {'wall radc':>9} {'oconv':>7} {'ratio':>6}"
+            f" | {'CPU radc':>8} {'oconv':>7} {'ratio':>6} | {'RSS radc':>8} {'oconv':>8} {'ratio':>5}")
     print(head)
     print("-" * len(head))
-    for name, size, prims, summary, r, o in rows:
-        print(f"{name:<8} {size / 1e6:>6.1f}MB {prims:>9} | {r[0] * 1e3:>9.0f}ms {o[0] * 1e3:>6.0f}ms"
-              f" {o[0] / r[0]:>7.1f}x | {r[2] / 1024:>7.1f}MB {o[2] / 1024:>7.1f}MB"
-              f" {o[2] / r[2]:>5.1f}x")
+    for name, size, prims, _, r, o in rows:
+        print(f"{name:<7} {size / 1e6:>5.1f}MB {prims:>8} |"
+              f" {r[0] * 1e3:>7.0f}ms {o[0] * 1e3:>5.0f}ms {o[0] / r[0]:>5.1f}x |"
+              f" {cpu_ms(r[1]):>8} {cpu_ms(o[1]):>7} {cpu_ratio(r[1], o[1]):>6} |"
+              f" {r[2] / 1024:>6.1f}MB {o[2] / 1024:>6.1f}MB {o[2] / r[2]:>4.1f}x")
     print()
     for name, _, _, summary, r, o in rows:
         print(f"{name}: radc check says '{summary}' (exit {sorted(r[3])}), oconv exit {sorted(o[3])}")

@@ -10,7 +10,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use radc_lang::scene::{self, FileLookup, LowerInput};
+use radc_lang::scene::{self, FileLookup, Keep, Lowering};
 use radc_lang::schema::FileKind;
 use radc_lang::{Diagnostic, FileId, Severity};
 
@@ -88,7 +88,13 @@ pub fn run(args: &[String]) -> ExitCode {
                 if is_cal(&f) {
                     check_cal(&f, &mut sources, &mut diags);
                 } else {
-                    check_scene(&[f], opts.allow_commands, &mut sources, &mut diags);
+                    check_scene(
+                        &[f],
+                        opts.allow_commands,
+                        Keep::Modifiers,
+                        &mut sources,
+                        &mut diags,
+                    );
                 }
             }
         } else if is_cal(path) {
@@ -98,7 +104,13 @@ pub fn run(args: &[String]) -> ExitCode {
         }
     }
     if !scene_files.is_empty() {
-        check_scene(&scene_files, opts.allow_commands, &mut sources, &mut diags);
+        check_scene(
+            &scene_files,
+            opts.allow_commands,
+            Keep::Modifiers,
+            &mut sources,
+            &mut diags,
+        );
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
@@ -181,14 +193,17 @@ fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
     sources.add(name, text);
 }
 
-/// Reads, parses and lowers `paths` in order as one scene.
+/// Reads, parses and lowers `paths` in order as one scene. Each file streams from the
+/// parser into the lowering; with `Keep::Modifiers` (all `radc check` needs) the
+/// surfaces are checked and dropped, so a check holds little more than the text.
 pub(super) fn check_scene(
     paths: &[PathBuf],
     allow_commands: bool,
+    keep: Keep,
     sources: &mut Sources,
     diags: &mut Vec<Diagnostic>,
 ) -> scene::ir::Scene {
-    let mut parsed = Vec::new();
+    let mut read = Vec::new();
     let mut dirs = Vec::new();
     for path in paths {
         let name = path.display().to_string();
@@ -205,29 +220,25 @@ pub(super) fn check_scene(
             }
         };
         let file = FileId(sources_len(sources));
-        let (text, mut found) = radc_lang::source::decode(file, &bytes);
+        let (text, found) = radc_lang::source::decode_owned(file, bytes);
         let id = sources.add(name, text);
         debug_assert_eq!(id, file);
-        let text = sources.get(id).map(|s| s.text.clone()).unwrap_or_default();
-        let (syntax, syntax_diags) = scene::parse(id, &text);
-        found.extend(syntax_diags);
-        diags.extend(found);
         let warn_unused = path.extension().is_none_or(|x| x != "mat");
         dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
-        parsed.push((id, syntax, warn_unused));
+        read.push((id, found, warn_unused));
     }
-    let inputs: Vec<LowerInput<'_>> = parsed
-        .iter()
-        .map(|(file, syntax, warn_unused)| LowerInput {
-            file: *file,
-            syntax,
-            warn_unused: *warn_unused,
-        })
-        .collect();
     let pending = PendingSources::new(sources_len(sources));
     let commands = Commands::new(dirs.clone(), &pending, allow_commands);
     let lookup = SearchPath::new(dirs, &pending);
-    let (scene, more) = scene::lower_with(&inputs, &lookup, &commands);
+    let mut lowering = Lowering::new(&lookup, &commands, keep);
+    for (id, found, warn_unused) in read {
+        let text = sources.get(id).map_or("", |s| s.text.as_str());
+        diags.extend(found);
+        diags.extend(scene::parse_each(id, text, &mut |item| {
+            lowering.item(item, warn_unused)
+        }));
+    }
+    let (scene, more) = lowering.finish();
     drop((commands, lookup));
     for (name, text) in pending.into_sources() {
         sources.add(name, text);

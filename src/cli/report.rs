@@ -10,7 +10,14 @@ use radc_lang::{Diagnostic, FileId, LineIndex, Severity};
 pub struct SourceText {
     pub name: String,
     pub text: String,
-    pub lines: LineIndex,
+    /// Built on first use: most files of a run have nothing to report.
+    lines: std::sync::OnceLock<LineIndex>,
+}
+
+impl SourceText {
+    pub fn lines(&self) -> &LineIndex {
+        self.lines.get_or_init(|| LineIndex::new(&self.text))
+    }
 }
 
 /// All files a run has read, indexed by `FileId`.
@@ -21,8 +28,11 @@ pub struct Sources {
 
 impl Sources {
     pub fn add(&mut self, name: String, text: String) -> FileId {
-        let lines = LineIndex::new(&text);
-        self.files.push(SourceText { name, text, lines });
+        self.files.push(SourceText {
+            name,
+            text,
+            lines: std::sync::OnceLock::new(),
+        });
         FileId(self.files.len() as u32 - 1)
     }
 
@@ -67,11 +77,32 @@ fn print_to(
         }
         Format::Human => {
             // One line index per file for the whole run: building it per diagnostic
-            // made tens of thousands of diagnostics on a big file take hours.
+            // made tens of thousands of diagnostics on a big file take hours. Only
+            // files a diagnostic points into are indexed (a clean 60 MB scene costs
+            // nothing here).
+            let mut shown = vec![false; sources.files.len()];
+            for d in diags {
+                for file in std::iter::once(d.span.file).chain(d.labels.iter().map(|l| l.span.file))
+                {
+                    if let Some(s) = shown.get_mut(file.0 as usize) {
+                        *s = true;
+                    }
+                }
+            }
+            // By name, as the cache keys them: a later file of the same name still
+            // replaces an earlier one, as when every file was in it.
+            let names: std::collections::HashSet<&str> = sources
+                .files
+                .iter()
+                .zip(&shown)
+                .filter(|(_, shown)| **shown)
+                .map(|(f, _)| f.name.as_str())
+                .collect();
             let mut cache = ariadne::sources(
                 sources
                     .files
                     .iter()
+                    .filter(|f| names.contains(f.name.as_str()))
                     .map(|f| (f.name.clone(), f.text.clone())),
             );
             for d in diags {
@@ -87,8 +118,8 @@ pub fn json(d: &Diagnostic, sources: &Sources) -> serde_json::Value {
     let (file, start, end) = match sources.get(d.span.file) {
         Some(s) => (
             s.name.clone(),
-            s.lines.line_col(&s.text, d.span.start as usize),
-            s.lines.line_col(&s.text, d.span.end as usize),
+            s.lines().line_col(&s.text, d.span.start as usize),
+            s.lines().line_col(&s.text, d.span.end as usize),
         ),
         None => (String::new(), (0, 0), (0, 0)),
     };
@@ -111,7 +142,7 @@ fn label_json(l: &radc_lang::Label, sources: &Sources) -> serde_json::Value {
     let Some(s) = sources.get(l.span.file) else {
         return serde_json::json!({ "message": l.message });
     };
-    let (line, column) = s.lines.line_col(&s.text, l.span.start as usize);
+    let (line, column) = s.lines().line_col(&s.text, l.span.start as usize);
     serde_json::json!({
         "file": s.name,
         "line": line,
@@ -174,7 +205,7 @@ fn human(
         report = report.with_help(h);
     }
     if report.finish().write(cache, &mut *out).is_err() {
-        let (line, col) = src.lines.line_col(&src.text, d.span.start as usize);
+        let (line, col) = src.lines().line_col(&src.text, d.span.start as usize);
         let _ = writeln!(
             out,
             "{name}:{line}:{col}: {}[{}]: {}",

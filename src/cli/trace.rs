@@ -392,7 +392,13 @@ pub(super) fn load_scene(
 ) -> Result<Scene, ExitCode> {
     let mut sources = Sources::default();
     let mut diags = Vec::new();
-    let ir = super::check::check_scene(paths, false, &mut sources, &mut diags);
+    let ir = super::check::check_scene(
+        paths,
+        false,
+        radc_lang::scene::Keep::Everything,
+        &mut sources,
+        &mut diags,
+    );
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     // A `!` command's output is part of the scene Radiance renders; without it the
     // numbers would be silently wrong.
@@ -423,7 +429,7 @@ pub(super) fn load_scene(
                 .get(p.prim)
                 .and_then(|prim| {
                     let s = sources.get(prim.span.file)?;
-                    let (line, col) = s.lines.line_col(&s.text, prim.span.start as usize);
+                    let (line, col) = s.lines().line_col(&s.text, prim.span.start as usize);
                     Some(format!("{}:{line}:{col}: ", s.name))
                 })
                 .unwrap_or_default();

@@ -187,6 +187,12 @@ impl Scene {
     /// through modifiers, aliases and modifier-naming string arguments. Unused
     /// modifiers cost nothing downstream.
     pub fn reachable(&self) -> Vec<bool> {
+        self.reachable_from(&[])
+    }
+
+    /// [`Scene::reachable`], with `roots` reached too: what surfaces that were
+    /// checked but not kept (`lower::Keep::Modifiers`) refer to.
+    pub fn reachable_from(&self, roots: &[PrimId]) -> Vec<bool> {
         let mut seen = vec![false; self.prims.len()];
         let mut stack: Vec<PrimId> = self
             .prims
@@ -194,6 +200,7 @@ impl Scene {
             .enumerate()
             .filter(|(_, p)| p.category() == Category::Surface)
             .map(|(i, _)| PrimId(i as u32))
+            .chain(roots.iter().copied())
             .collect();
         while let Some(id) = stack.pop() {
             let Some(slot) = seen.get_mut(id.0 as usize) else {

@@ -7,12 +7,13 @@ pub mod ir;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
+mod reader;
 pub mod scope;
 pub mod syntax;
 
 pub use command::{CommandExpander, Expansion, NoCommands};
-pub use lower::{AssumeFilesExist, FileLookup, LowerInput, lower, lower_with};
-pub use parser::parse;
+pub use lower::{AssumeFilesExist, FileLookup, Keep, LowerInput, Lowering, lower, lower_with};
+pub use parser::{parse, parse_each};
 
 use crate::diagnostic::Diagnostic;
 use crate::source::FileId;
@@ -24,15 +25,9 @@ pub fn check_text(
     files: &dyn FileLookup,
     warn_unused: bool,
 ) -> (ir::Scene, Vec<Diagnostic>) {
-    let (syntax, mut diags) = parse(file, text);
-    let (scene, more) = lower(
-        &[LowerInput {
-            file,
-            syntax: &syntax,
-            warn_unused,
-        }],
-        files,
-    );
+    let mut lowering = Lowering::new(files, &NoCommands, Keep::Everything);
+    let mut diags = parse_each(file, text, &mut |item| lowering.item(item, warn_unused));
+    let (scene, more) = lowering.finish();
     diags.extend(more);
     (scene, diags)
 }

@@ -12,7 +12,8 @@ use chumsky::input::{Input as _, MapExtra, ValueInput};
 use chumsky::prelude::*;
 use chumsky::util::MaybeRef;
 
-use super::lexer::{Token, TokenKind, lex, unquote};
+use super::lexer::{Lexer, Token, TokenKind, unquote};
+use super::reader::{Stopped, read};
 use super::syntax::{Alias, ArgGroup, Command, Item, Primitive, Real, SceneFile, Word};
 use crate::diagnostic::{self as codes, Code, Diagnostic};
 use crate::schema;
@@ -85,8 +86,33 @@ type Extra<'src, C = ()> = extra::Full<SyntaxError, (), C>;
 
 /// Parses scene text into a syntax tree plus every syntax diagnostic.
 pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
-    let tokens: Vec<(Token<'_>, SimpleSpan)> = lex(text)
-        .into_iter()
+    let mut items = Vec::new();
+    let diagnostics = parse_each(file, text, &mut |item| items.push(item.clone()));
+    (SceneFile { items }, diagnostics)
+}
+
+/// Parses scene text one statement at a time, handing each item to `visit` in file
+/// order, and returns every syntax diagnostic. Nothing of the syntax tree is kept, so
+/// a caller that lowers as it goes reads a scene of any size in little memory.
+///
+/// The fast reader (`reader.rs`) reads statements while they are clean; from the
+/// first one it cannot read, this recovering parser takes over for the rest of the
+/// file, so the result is the same as parsing it all with recovery.
+pub fn parse_each(file: FileId, text: &str, visit: &mut dyn FnMut(&Item)) -> Vec<Diagnostic> {
+    let mut diagnostics = Vec::new();
+    let Err(Stopped(resume)) = read(file, text, visit, &mut diagnostics) else {
+        return diagnostics;
+    };
+    let (items, more) = parse_recovering(file, text, resume);
+    items.iter().for_each(visit);
+    diagnostics.extend(more);
+    diagnostics
+}
+
+/// The recovering parser on the statements from byte `start` (a statement boundary)
+/// to the end, with spans in the whole text.
+fn parse_recovering(file: FileId, text: &str, start: usize) -> (Vec<Item>, Vec<Diagnostic>) {
+    let tokens: Vec<(Token<'_>, SimpleSpan)> = Lexer::starting_at(text, start)
         .map(|(t, r)| (t, SimpleSpan::from(r)))
         .collect();
     let eoi = SimpleSpan::from(text.len()..text.len());
@@ -100,7 +126,7 @@ pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
         .into_iter()
         .map(|e| to_diagnostic(file, text, e))
         .collect();
-    (SceneFile { items }, diagnostics)
+    (items, diagnostics)
 }
 
 /// The parser builds spans in `FileId(0)`; stamp the real file on them.
@@ -135,7 +161,7 @@ fn span_of(s: SimpleSpan) -> Span {
     Span::new(FileId(0), s.start..s.end)
 }
 
-fn to_diagnostic(file: FileId, text: &str, e: SyntaxError) -> Diagnostic {
+pub(super) fn to_diagnostic(file: FileId, text: &str, e: SyntaxError) -> Diagnostic {
     let span = Span::new(file, e.span.start..e.span.end);
     match e.kind {
         SyntaxErrorKind::Custom {
@@ -170,7 +196,7 @@ fn to_diagnostic(file: FileId, text: &str, e: SyntaxError) -> Diagnostic {
 
 /// Whether a word is what Radiance reads as an integer count (`isint`: optional
 /// sign, digits).
-fn parse_count(s: &str) -> Option<u32> {
+pub(super) fn parse_count(s: &str) -> Option<u32> {
     let digits = s.strip_prefix(['+', '-']).unwrap_or(s);
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
@@ -188,43 +214,77 @@ fn parse_count(s: &str) -> Option<u32> {
 /// where the digits after a point may be absent (`5.`). No `inf`, `nan` or hex.
 pub fn parse_real(s: &str) -> Option<f64> {
     let b = s.as_bytes();
-    let mut i = 0;
-    if matches!(b.first(), Some(b'+' | b'-')) {
-        i += 1;
-    }
+    let negative = b.first() == Some(&b'-');
+    let mut i = usize::from(matches!(b.first(), Some(b'+' | b'-')));
+    // The decimal digits as an integer and the power of ten that scales them, for the
+    // exact fast path below (the integer is only used when it cannot have wrapped).
+    let mut mantissa: u64 = 0;
     let int_start = i;
-    while i < b.len() && b[i].is_ascii_digit() {
-        i += 1;
-    }
+    i = digits(b, i, &mut mantissa);
     let mut mantissa_digits = i - int_start;
-    if i < b.len() && b[i] == b'.' {
-        i += 1;
-        let frac_start = i;
-        while i < b.len() && b[i].is_ascii_digit() {
-            i += 1;
-        }
+    let mut scale: i64 = 0;
+    if b.get(i) == Some(&b'.') {
+        let frac_start = i + 1;
+        i = digits(b, frac_start, &mut mantissa);
         mantissa_digits += i - frac_start;
+        scale = -((i - frac_start) as i64);
     }
     if mantissa_digits == 0 {
         return None;
     }
-    if i < b.len() && (b[i] == b'e' || b[i] == b'E') {
+    if matches!(b.get(i), Some(b'e' | b'E')) {
         i += 1;
+        let exp_negative = b.get(i) == Some(&b'-');
         if matches!(b.get(i), Some(b'+' | b'-')) {
             i += 1;
         }
         let exp_start = i;
-        while i < b.len() && b[i].is_ascii_digit() {
+        let mut exp: i64 = 0;
+        while let Some(&d) = b.get(i)
+            && d.is_ascii_digit()
+        {
+            exp = exp.saturating_mul(10).saturating_add(i64::from(d - b'0'));
             i += 1;
         }
         if i == exp_start {
             return None;
         }
+        scale = scale.saturating_add(if exp_negative { -exp } else { exp });
     }
     if i != b.len() {
         return None;
     }
+    // Clinger's fast path: an integer below 2^53 and a power of ten up to 10^22 are
+    // both exact in f64, so one multiplication or division rounds correctly, giving
+    // the same value as the full conversion. 19 digits cannot overflow a u64.
+    if mantissa_digits <= 19 && mantissa < (1 << 53) && (-22..=22).contains(&scale) {
+        const POW10: [f64; 23] = [
+            1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+        ];
+        let m = mantissa as f64;
+        let v = if scale >= 0 {
+            m * POW10[scale as usize]
+        } else {
+            m / POW10[(-scale) as usize]
+        };
+        return Some(if negative { -v } else { v });
+    }
     s.parse::<f64>().ok()
+}
+
+/// Reads decimal digits from `i` into `mantissa` (wrapping past 19 digits, when the
+/// caller no longer uses it) and returns where they end.
+fn digits(b: &[u8], mut i: usize, mantissa: &mut u64) -> usize {
+    while let Some(&c) = b.get(i) {
+        let d = c.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        *mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+        i += 1;
+    }
+    i
 }
 
 /// A word in a position where Radiance calls `fgetword`. A `#`/`!` token is only a
@@ -386,16 +446,8 @@ where
         .then(group(word(), "string"))
         .then(
             group(word(), "integer").validate(|g: ArgGroup<Word>, _, emitter| {
-                if !g.items.is_empty() {
-                    emitter.emit(SyntaxError::custom(
-                        SimpleSpan::from(g.count_span.start as usize..g.count_span.end as usize),
-                        codes::E0105,
-                        format!(
-                            "the integer-argument count is {}, but it must be 0",
-                            g.len()
-                        ),
-                        Some("no Radiance primitive takes integer arguments; write 0".into()),
-                    ));
+                if let Some(error) = nonzero_ints(&g) {
+                    emitter.emit(error);
                 }
                 g
             }),
@@ -431,18 +483,44 @@ where
     I: ValueInput<'src, Token = Token<'src>, Span = SimpleSpan>,
 {
     word().validate(|w: Word, e, emitter| {
-        if schema::lookup(&w.text).is_none() && w.text != "alias" {
-            let mut message = format!("unknown primitive type '{}'", w.text);
-            let hint = codes::suggest(&w.text, schema::type_names())
-                .map(|s| format!("did you mean '{s}'?"))
-                .or_else(|| Some("see `radc doc types` for the types Radiance knows".into()));
-            if w.text.parse::<f64>().is_ok() {
-                message.push_str(" (a number where the type should be: check the counts of the primitive before)");
-            }
-            emitter.emit(SyntaxError::custom(e.span(), codes::E0201, message, hint));
+        if let Some(error) = unknown_type(&w, e.span()) {
+            emitter.emit(error);
         }
         w
     })
+}
+
+/// E0201 for a type keyword Radiance does not know.
+pub(super) fn unknown_type(w: &Word, span: SimpleSpan) -> Option<SyntaxError> {
+    if schema::lookup(&w.text).is_some() || w.text == "alias" {
+        return None;
+    }
+    let mut message = format!("unknown primitive type '{}'", w.text);
+    let hint = codes::suggest(&w.text, schema::type_names())
+        .map(|s| format!("did you mean '{s}'?"))
+        .or_else(|| Some("see `radc doc types` for the types Radiance knows".into()));
+    if w.text.parse::<f64>().is_ok() {
+        message.push_str(
+            " (a number where the type should be: check the counts of the primitive before)",
+        );
+    }
+    Some(SyntaxError::custom(span, codes::E0201, message, hint))
+}
+
+/// E0105 for integer arguments, which no Radiance primitive takes.
+pub(super) fn nonzero_ints(g: &ArgGroup<Word>) -> Option<SyntaxError> {
+    if g.items.is_empty() {
+        return None;
+    }
+    Some(SyntaxError::custom(
+        SimpleSpan::from(g.count_span.start as usize..g.count_span.end as usize),
+        codes::E0105,
+        format!(
+            "the integer-argument count is {}, but it must be 0",
+            g.len()
+        ),
+        Some("no Radiance primitive takes integer arguments; write 0".into()),
+    ))
 }
 
 /// Lookahead for recovery: a line that begins a comment, a command, or
@@ -464,7 +542,7 @@ where
 }
 
 /// The command as the shell sees it: without the `!`, backslash-newline joined.
-fn command_text(raw: &str) -> String {
+pub(super) fn command_text(raw: &str) -> String {
     raw.strip_prefix('!')
         .unwrap_or(raw)
         .replace("\\\r\n", " ")
@@ -509,13 +587,43 @@ mod tests {
 
     #[test]
     fn real_syntax_matches_radiance() {
-        for ok in ["5.", ".5", "+.5", "1.e5", "1e5", "-.5E-2", "007", "1e400"] {
-            assert!(parse_real(ok).is_some(), "{ok}");
+        for ok in [
+            "5.",
+            ".5",
+            "+.5",
+            "1.e5",
+            "1e5",
+            "-.5E-2",
+            "007",
+            "1e400",
+            "-0",
+            "5.14980211588",
+            "-2.53678628326e-05",
+            "9007199254740993",
+            "1e23",
+            "0.1",
+            "123456789012345678901234567890e-10",
+            "1e-400",
+        ] {
+            let v = parse_real(ok).map(f64::to_bits);
+            assert_eq!(v, ok.parse::<f64>().ok().map(f64::to_bits), "{ok}");
         }
         for bad in [
             "nan", "inf", "0x10", "1e", "5.5.5", "1,5", ".", ".e1", "", "-", "e5",
         ] {
             assert!(parse_real(bad).is_none(), "{bad}");
+        }
+    }
+
+    proptest::proptest! {
+        /// The fast path gives exactly the standard library's value.
+        #[test]
+        fn real_values_match_the_full_conversion(
+            s in proptest::string::string_regex("[+-]?[0-9]{0,12}\\.?[0-9]{0,12}([eE][+-]?[0-9]{1,3})?").unwrap()
+        ) {
+            let fast = parse_real(&s).map(f64::to_bits);
+            let full = parse_real(&s).and_then(|_| s.parse::<f64>().ok()).map(f64::to_bits);
+            proptest::prop_assert_eq!(fast, full);
         }
     }
 
@@ -566,6 +674,46 @@ mod tests {
         let p = scene.primitives().next().unwrap();
         assert_eq!(p.strings.items[0].text, "#x");
         assert_eq!(p.strings.items[1].text, "!y");
+    }
+
+    /// Statements that are mostly valid, with the ways they go wrong mixed in.
+    fn scene_text() -> impl proptest::strategy::Strategy<Value = String> {
+        use proptest::prelude::*;
+        let word = prop::sample::select(
+            &[
+                "void", "m", "alias", "inherit", "plastic", "polygon", "sphere", "plastc", "0",
+                "1", "3", "5", "9", "12", "-1", "5.0", ".5", "1e400", "x", "\"a b\"", "'q'",
+                "\"open", "#", "# c d", "#x", "!cmd", "!a b", "\\", "\n", "\n", "\n", "x\u{0}y",
+                "5\u{0}",
+            ][..],
+        );
+        let statement = prop_oneof![
+            4 => (0usize..13).prop_map(|n| {
+                let reals: Vec<String> = (0..n).map(|i| format!("{i}.5")).collect();
+                format!("m polygon p 0 0 {n} {}\n", reals.join(" "))
+            }),
+            2 => Just("void plastic m 0 0 5 .5 .5 .5 0 0\n".to_string()),
+            1 => Just("m alias n m\n".to_string()),
+            1 => Just("# comment\n!genbox m b 1 2 3\n".to_string()),
+            1 => Just("void plastc q 0 0 5 1 2 3 4 5\n".to_string()),
+            1 => Just("void plastic q 0 2 a b 5 1 2 3 4 5\n".to_string()),
+            1 => Just("m 5 q 0 0 1 x\n".to_string()),
+            3 => prop::collection::vec(word, 1..8).prop_map(|w| w.join(" ")),
+        ];
+        prop::collection::vec(statement, 0..10).prop_map(|s| s.join(" "))
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+
+        /// The fast reader plus recovery is exactly the recovering parser alone.
+        #[test]
+        fn fast_reader_agrees_with_the_recovering_parser(text in scene_text()) {
+            let (scene, diags) = parse(FileId(3), &text);
+            let (items, slow_diags) = parse_recovering(FileId(3), &text, 0);
+            proptest::prop_assert_eq!(scene.items, items);
+            proptest::prop_assert_eq!(diags, slow_diags);
+        }
     }
 
     #[test]
