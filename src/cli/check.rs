@@ -158,29 +158,19 @@ fn is_cal(path: &Path) -> bool {
 /// Checks a calcomp file on its own. Names it leaves to its users (a scene, an rcalc
 /// command line) are noted, not errors.
 fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
-    let name = path.display().to_string();
-    let bytes = match std::fs::read(path) {
-        Ok(b) => b,
-        Err(e) => {
-            let file = sources.add(name.clone(), String::new());
-            diags.push(Diagnostic::new(
-                radc_lang::diagnostic::E0305,
-                radc_lang::Span::new(file, 0..0),
-                format!("cannot read '{name}': {e}"),
-            ));
-            return;
-        }
+    let Some(file) = read_source(path, sources, diags) else {
+        return;
     };
-    let file = FileId(sources_len(sources));
-    let (text, found) = radc_lang::source::decode(file, &bytes);
-    diags.extend(found);
+    let Some(text) = sources.get(file).map(|s| s.text.as_str()) else {
+        return;
+    };
     // A file is either for the renderer (ray variables, rayinit.cal) or for rcalc and
     // the generators (`$N`, `Px(i)` user functions are fine there): judge it as the
     // one it fits, preferring the renderer.
     let errors = |d: &Vec<Diagnostic>| d.iter().filter(|d| d.is_error()).count();
-    let renderer = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::renderer());
+    let renderer = radc_lang::cal::check(file, text, &radc_lang::cal::Env::renderer());
     let found = if errors(&renderer) > 0 {
-        let rcalc = radc_lang::cal::check(file, &text, &radc_lang::cal::Env::rcalc());
+        let rcalc = radc_lang::cal::check(file, text, &radc_lang::cal::Env::rcalc());
         if errors(&rcalc) < errors(&renderer) {
             rcalc
         } else {
@@ -190,7 +180,6 @@ fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
         renderer
     };
     diags.extend(found);
-    sources.add(name, text);
 }
 
 /// Reads, parses and lowers `paths` in order as one scene. Each file streams from the
@@ -206,28 +195,16 @@ pub(super) fn check_scene(
     let mut read = Vec::new();
     let mut dirs = Vec::new();
     for path in paths {
-        let name = path.display().to_string();
-        let bytes = match std::fs::read(path) {
-            Ok(b) => b,
-            Err(e) => {
-                let file = sources.add(name.clone(), String::new());
-                diags.push(Diagnostic::new(
-                    radc_lang::diagnostic::E0305,
-                    radc_lang::Span::new(file, 0..0),
-                    format!("cannot read '{name}': {e}"),
-                ));
-                continue;
-            }
+        let mut found = Vec::new();
+        let Some(id) = read_source(path, sources, &mut found) else {
+            diags.extend(found);
+            continue;
         };
-        let file = FileId(sources_len(sources));
-        let (text, found) = radc_lang::source::decode_owned(file, bytes);
-        let id = sources.add(name, text);
-        debug_assert_eq!(id, file);
         let warn_unused = path.extension().is_none_or(|x| x != "mat");
         dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
         read.push((id, found, warn_unused));
     }
-    let pending = PendingSources::new(sources_len(sources));
+    let pending = PendingSources::new(sources.next_id().0);
     let commands = Commands::new(dirs.clone(), &pending, allow_commands);
     let lookup = SearchPath::new(dirs, &pending);
     let mut lowering = Lowering::new(&lookup, &commands, keep);
@@ -247,12 +224,26 @@ pub(super) fn check_scene(
     scene
 }
 
-fn sources_len(sources: &Sources) -> u32 {
-    let mut n = 0;
-    while sources.get(FileId(n)).is_some() {
-        n += 1;
+/// Reads a file the user named and decodes it, registering it as the next source.
+/// An unreadable file is an E0305 diagnostic (registered empty), not a failure.
+fn read_source(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) -> Option<FileId> {
+    let name = path.display().to_string();
+    match std::fs::read(path) {
+        Ok(bytes) => {
+            let (text, found) = radc_lang::source::decode_owned(sources.next_id(), bytes);
+            diags.extend(found);
+            Some(sources.add(name, text))
+        }
+        Err(e) => {
+            let file = sources.add(name.clone(), String::new());
+            diags.push(Diagnostic::new(
+                radc_lang::diagnostic::E0305,
+                radc_lang::Span::new(file, 0..0),
+                format!("cannot read '{name}': {e}"),
+            ));
+            None
+        }
     }
-    n
 }
 
 /// Finds auxiliary files as Radiance does, plus the scene's own folder: absolute

@@ -27,6 +27,11 @@ pub struct Sources {
 }
 
 impl Sources {
+    /// The id the next added file will get.
+    pub fn next_id(&self) -> FileId {
+        FileId(self.files.len() as u32)
+    }
+
     pub fn add(&mut self, name: String, text: String) -> FileId {
         self.files.push(SourceText {
             name,
