@@ -61,6 +61,22 @@ impl CurveProgram {
         }
     }
 
+    /// The generators' `-e expr` and `-f file` options: definitions from the command
+    /// line or from a file read through `host`.
+    pub fn load_option(
+        &mut self,
+        option: &str,
+        value: &str,
+        host: &mut dyn crate::Host,
+    ) -> Result<(), GenError> {
+        if option == "-e" {
+            self.compile(value, value)
+        } else {
+            let text = host.read_file(value)?;
+            self.compile(&text, value)
+        }
+    }
+
     /// `eval(text)`: an expression's value with the definitions made so far.
     pub fn eval(&mut self, text: &str) -> Result<f64, GenError> {
         let channel = self.next_channel;

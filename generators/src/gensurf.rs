@@ -70,12 +70,7 @@ pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
             option @ ("-e" | "-f") => {
                 i += 1;
                 let value = args.get(i).ok_or_else(usage)?;
-                if option == "-e" {
-                    program.compile(value, value)?;
-                } else {
-                    let text = host.read_file(value)?;
-                    program.compile(&text, value)?;
-                }
+                program.load_option(option, value, host)?;
             }
             _ => return Err(usage()),
         }

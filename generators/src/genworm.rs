@@ -26,11 +26,7 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
     while i < args.len() {
         let value = args.get(i + 1).ok_or_else(usage)?;
         match args[i].as_str() {
-            "-e" => program.compile(value, value)?,
-            "-f" => {
-                let text = host.read_file(value)?;
-                program.compile(&text, value)?;
-            }
+            option @ ("-e" | "-f") => program.load_option(option, value, host)?,
             _ => return Err(usage()),
         }
         i += 2;
