@@ -34,12 +34,23 @@ fn matches_rcalc_on_the_semantics_goldens() {
     let cases = cases.as_array().expect("a list of cases");
     assert!(cases.len() >= 70);
     let mut failures = Vec::new();
-    for case in cases {
+    // Both engines: the JIT (the default) and the reference interpreter.
+    for (engine, case) in [&[][..], &["--interp"][..]]
+        .into_iter()
+        .flat_map(|e| cases.iter().map(move |c| (e, c)))
+    {
         let name = case["name"].as_str().unwrap_or("?");
-        let args: Vec<&str> = case["args"]
-            .as_array()
-            .map(|a| a.iter().filter_map(|v| v.as_str()).collect())
-            .unwrap_or_default();
+        let args: Vec<&str> = engine
+            .iter()
+            .copied()
+            .chain(
+                case["args"]
+                    .as_array()
+                    .into_iter()
+                    .flatten()
+                    .filter_map(|v| v.as_str()),
+            )
+            .collect();
         let stdin = case["stdin"].as_str().unwrap_or("");
         let want_out = case["stdout"].as_str().unwrap_or("");
         let want_ok = case["status"].as_i64() == Some(0);
@@ -47,7 +58,7 @@ fn matches_rcalc_on_the_semantics_goldens() {
         let got_out = String::from_utf8_lossy(&out.stdout);
         if got_out != want_out || out.status.success() != want_ok {
             failures.push(format!(
-                "{name}: rcalc {want_out:?} (ok: {want_ok}), radc {got_out:?} (status {:?})\n  stderr: {}",
+                "{name} {engine:?}: rcalc {want_out:?} (ok: {want_ok}), radc {got_out:?} (status {:?})\n  stderr: {}",
                 out.status.code(),
                 String::from_utf8_lossy(&out.stderr).trim()
             ));
@@ -55,9 +66,9 @@ fn matches_rcalc_on_the_semantics_goldens() {
     }
     assert!(
         failures.is_empty(),
-        "{} of {} cases differ from rcalc:\n{}",
+        "{} of {} cases (each run by both engines) differ from rcalc:\n{}",
         failures.len(),
-        cases.len(),
+        cases.len() * 2,
         failures.join("\n")
     );
 }
@@ -99,4 +110,20 @@ fn binary_output_writes_doubles() {
         .map(|c| f64::from_ne_bytes(c.try_into().unwrap_or([0; 8])))
         .collect();
     assert_eq!(v, [1.5, 0.0, 2.0]);
+}
+
+/// The JIT runs by default: it declines a program only with a note on stderr, and
+/// `--interp` gives the same bytes.
+#[test]
+fn jit_is_the_default_and_agrees_with_interp() {
+    let expr = "f(x,y) = if(x-y, sqrt(x*x+y*y)*sin(x), exp(-x*y/100)); $1 = f($1,$2); $2 = $1/0";
+    let rows = "1 2\n3 1\n-4.5 1e3\n";
+    let jit = radc_calc(&["-e", expr], rows);
+    let interp = radc_calc(&["--interp", "-e", expr], rows);
+    let jit_err = String::from_utf8_lossy(&jit.stderr);
+    assert!(!jit_err.contains("using the interpreter"), "{jit_err}");
+    assert!(jit_err.contains("Division by zero"), "{jit_err}");
+    assert_eq!(jit.stdout, interp.stdout);
+    assert_eq!(jit.stderr, interp.stderr);
+    assert_eq!(String::from_utf8_lossy(&jit.stdout).lines().count(), 3);
 }

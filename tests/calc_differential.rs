@@ -282,14 +282,10 @@ fn compare(golden: &Golden, outcome: &Outcome) -> Option<String> {
     }
 }
 
-/// `radc calc` is being written on another branch; until it lands, the dispatcher rejects
-/// the command with a usage error and this test has nothing to compare.
-fn calc_is_missing() -> bool {
-    let outcome = run_radc(&["-n".into(), "-e".into(), "$1=1".into()], &[], ".");
-    outcome.status.and_then(|s| s.code()) == Some(2) && outcome.stderr.contains("unknown command")
-}
+/// The two engines: the JIT (the default) and the reference interpreter.
+const ENGINES: [&[&str]; 2] = [&[], &["--interp"]];
 
-fn run_set(name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
+fn run_set(name: &str, engine: &[&str], raypath: &str, failures: &mut Vec<String>) -> usize {
     let dir = data_dir();
     let read = |file: &str| {
         std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("reading {file}: {e}"))
@@ -306,12 +302,14 @@ fn run_set(name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
         "{name}.golden is stale: run tests/oracle/regen_calc_goldens.py"
     );
     for (case, (_, golden)) in cases.iter().zip(&goldens) {
-        let outcome = run_radc(&case.args, &case.stdin_rows, raypath);
+        let args: Vec<String> = engine
+            .iter()
+            .map(|a| a.to_string())
+            .chain(case.args.iter().cloned())
+            .collect();
+        let outcome = run_radc(&args, &case.stdin_rows, raypath);
         if let Some(problem) = compare(golden, &outcome) {
-            failures.push(format!(
-                "[{name}/{}] radc calc {:?}: {problem}",
-                case.id, case.args
-            ));
+            failures.push(format!("[{name}/{}] radc calc {args:?}: {problem}", case.id));
         }
     }
     cases.len()
@@ -319,21 +317,20 @@ fn run_set(name: &str, raypath: &str, failures: &mut Vec<String>) -> usize {
 
 #[test]
 fn radc_calc_matches_rcalc() {
-    if calc_is_missing() {
-        eprintln!(
-            "notice: `radc calc` is not implemented yet; skipping the rcalc differential test"
-        );
-        return;
-    }
     let library = oracle_library();
     let raypath = match &library {
         Some(lib) => format!(".:{}", lib.display()),
         None => ".".to_string(),
     };
     let mut failures = Vec::new();
-    let mut total = run_set("expressions", &raypath, &mut failures);
+    let mut total = 0;
+    for engine in ENGINES {
+        total += run_set("expressions", engine, &raypath, &mut failures);
+    }
     if library.is_some() {
-        total += run_set("library", &raypath, &mut failures);
+        for engine in ENGINES {
+            total += run_set("library", engine, &raypath, &mut failures);
+        }
     } else {
         eprintln!(
             "notice: no .oracle/ Radiance library found; skipping the library cases \

@@ -35,7 +35,7 @@ use cranelift_module::{FuncId, Module as _};
 use layout::{Block, Cached, Raw, Slot, Tables};
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{EvalError, Input, MAX_DEPTH, MathErrors, NoInput, Warning};
-use radc_lang::cal::ir::DefId;
+use radc_lang::cal::ir::{DefId, Expr};
 use std::ffi::c_void;
 use std::fmt;
 use std::sync::Arc;
@@ -126,15 +126,32 @@ impl Jit {
     /// Compile what `entries` reach. An entry is a variable or function name as
     /// written, or `$N` for output column N.
     pub fn compile(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
+        self.compile_with_expressions(module, entries, &[])
+    }
+
+    /// As [`Jit::compile`], plus expressions of the module that no definition holds
+    /// (an rcalc `-o` format's fields, made by `Module::add_expression`): entry `#k`
+    /// computes `exprs[k]`.
+    pub fn compile_with_expressions(
+        &self,
+        module: &Module,
+        entries: &[&str],
+        exprs: &[&Expr],
+    ) -> Result<Compiled, JitError> {
         // A Cranelift panic is a bug to report, but never a reason to fail the
         // program: the caller falls back to the interpreter.
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            self.compile_unguarded(module, entries)
+            self.compile_unguarded(module, entries, exprs)
         }))
         .unwrap_or_else(|_| Err(JitError::Backend("code generator panicked".into())))
     }
 
-    fn compile_unguarded(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
+    fn compile_unguarded(
+        &self,
+        module: &Module,
+        entries: &[&str],
+        exprs: &[&Expr],
+    ) -> Result<Compiled, JitError> {
         let mut plans = Vec::new();
         let mut roots = Vec::new();
         let mut syms = Vec::new();
@@ -161,6 +178,10 @@ impl Jit {
                 Some(d) => plans.push(EntryPlan::Function(d)),
                 None => plans.push(EntryPlan::Body(EntryBody::Variable(sym))),
             }
+        }
+        for &e in exprs {
+            roots.push(e);
+            plans.push(EntryPlan::Body(EntryBody::Output(e)));
         }
         let defs = codegen::reachable(module, &roots, &syms);
         let limits = self
@@ -217,7 +238,11 @@ impl Jit {
         };
         Ok(Compiled {
             functions: state.var_fns.len() + state.user_fns.len(),
-            entry_names: entries.iter().map(|e| e.to_string()).collect(),
+            entry_names: entries
+                .iter()
+                .map(|e| e.to_string())
+                .chain((0..exprs.len()).map(|k| format!("#{k}")))
+                .collect(),
             codes,
             tables: Arc::new(tables),
             cache_init: state.cache_init,

@@ -7,6 +7,7 @@ use super::{Compiled, Context, Entry, Jit, JitError};
 use crate::interp::{Error, Outputs, Record};
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{Input, MathErrors, NoInput, Warning};
+use radc_lang::cal::ir::Expr;
 use radc_lang::cal::syntax::DefKind;
 use std::fmt;
 
@@ -32,6 +33,8 @@ pub struct JitProgram {
     ctx: Context,
     cond: Option<Entry>,
     outputs: Vec<(u32, Entry)>,
+    /// The expressions given to [`JitProgram::with_fields`], as entries.
+    fields: Vec<Entry>,
     recno: Option<usize>,
     outno: Option<usize>,
     nrecs: u64,
@@ -42,6 +45,18 @@ pub struct JitProgram {
 impl JitProgram {
     /// As [`crate::Interpreter::new`]: `recno` and `outno` are host variables.
     pub fn new(module: &Module, policy: MathErrors) -> Result<Self, StartError> {
+        Self::with_fields(module, policy, &[], &[])
+    }
+
+    /// As [`JitProgram::new`], also compiling `fields` (an `-o` format's number fields,
+    /// see [`JitProgram::field`]) and making `named` variables settable per record
+    /// ([`JitProgram::set_named`], an `-i` format's fields).
+    pub fn with_fields(
+        module: &Module,
+        policy: MathErrors,
+        fields: &[&Expr],
+        named: &[&str],
+    ) -> Result<Self, StartError> {
         let cond = module.lookup("cond").and_then(|s| {
             module
                 .current_def(s)
@@ -56,10 +71,17 @@ impl JitProgram {
             entries.push("cond".into());
         }
         let names: Vec<&str> = entries.iter().map(String::as_str).collect();
+        let mut hosts = vec!["recno", "outno"];
+        // A format may name a variable twice (`${a} ${a}`): one host slot each name.
+        for n in named {
+            if !hosts.contains(n) {
+                hosts.push(n);
+            }
+        }
         let compiled = Jit::new()
             .with_policy(policy)
-            .with_host_variables(&["recno", "outno"])
-            .compile(module, &names)
+            .with_host_variables(&hosts)
+            .compile_with_expressions(module, &names, fields)
             .map_err(StartError::Jit)?;
         let entry = |name: &str| {
             compiled
@@ -74,6 +96,9 @@ impl JitProgram {
             Some(_) => Some(entry("cond")?),
             None => None,
         };
+        let fields = (0..fields.len())
+            .map(|k| entry(&format!("#{k}")))
+            .collect::<Result<Vec<_>, StartError>>()?;
         let ctx = compiled.context();
         Ok(JitProgram {
             recno: compiled.host_index("recno"),
@@ -82,6 +107,7 @@ impl JitProgram {
             ctx,
             cond,
             outputs,
+            fields,
             nrecs: 0,
             nout: 0,
             partial: Vec::new(),
@@ -95,12 +121,31 @@ impl JitProgram {
 
     /// rcalc `-n`: one record with no input.
     pub fn single(&mut self) -> Result<Outputs, Error> {
-        self.ctx.next_record();
+        self.begin_single();
         self.outputs(&mut NoInput)
+    }
+
+    /// A new input file: rcalc numbers records (`recno`, `outno`) from 1 in each.
+    pub fn start_file(&mut self) {
+        self.nrecs = 0;
+        self.nout = 0;
+    }
+
+    /// Start rcalc's single `-n` record.
+    pub fn begin_single(&mut self) {
+        self.ctx.next_record();
     }
 
     /// One input record: `None` when `cond` rejects it.
     pub fn record(&mut self, record: &mut Record) -> Result<Option<Outputs>, Error> {
+        if !self.begin_record(record)? {
+            return Ok(None);
+        }
+        self.outputs(record).map(Some)
+    }
+
+    /// As [`crate::Interpreter::begin_record`].
+    pub fn begin_record(&mut self, input: &mut dyn Input) -> Result<bool, Error> {
         self.nrecs += 1;
         if let Some(k) = self.recno {
             self.ctx.set_host(k, self.nrecs as f64);
@@ -109,28 +154,57 @@ impl JitProgram {
             self.ctx.set_host(k, (self.nout + 1) as f64);
         }
         self.ctx.next_record();
+        // `varvalue("cond") > 0.0` accepts: a NaN cond rejects the record.
         if let Some(c) = self.cond
-            && self.compiled.eval(c, &mut self.ctx, record)? <= 0.0
+            && self.compiled.eval(c, &mut self.ctx, input)?.partial_cmp(&0.0)
+                != Some(std::cmp::Ordering::Greater)
         {
-            return Ok(None);
+            return Ok(false);
         }
-        let out = self.outputs(record)?;
         self.nout += 1;
-        Ok(Some(out))
+        Ok(true)
+    }
+
+    /// Set a variable named to [`JitProgram::with_fields`] for this record; false if
+    /// the program has no such variable.
+    pub fn set_named(&mut self, name: &str, value: f64) -> bool {
+        match self.compiled.host_index(name) {
+            Some(k) => {
+                self.ctx.set_host(k, value);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The value of the `k`th field given to [`JitProgram::with_fields`].
+    pub fn field(&mut self, k: usize, input: &mut dyn Input) -> Result<f64, Error> {
+        let Some(&entry) = self.fields.get(k) else {
+            return Err(Error::Eval(radc_lang::cal::eval::EvalError::NotAvailable(
+                format!("format field #{k}"),
+            )));
+        };
+        Ok(self.compiled.eval(entry, &mut self.ctx, input)?)
+    }
+
+    /// The `$N` columns of the record begun, appended to `out`; on an error `out`
+    /// holds the columns computed before it.
+    pub fn outputs_into(&mut self, input: &mut dyn Input, out: &mut Outputs) -> Result<(), Error> {
+        for &(chan, entry) in &self.outputs {
+            out.push((chan, self.compiled.eval(entry, &mut self.ctx, input)?));
+        }
+        Ok(())
     }
 
     fn outputs(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
         let mut out = Vec::with_capacity(self.outputs.len());
-        for &(chan, entry) in &self.outputs {
-            match self.compiled.eval(entry, &mut self.ctx, input) {
-                Ok(v) => out.push((chan, v)),
-                Err(e) => {
-                    self.partial = out;
-                    return Err(e.into());
-                }
+        match self.outputs_into(input, &mut out) {
+            Ok(()) => Ok(out),
+            Err(e) => {
+                self.partial = out;
+                Err(e)
             }
         }
-        Ok(out)
     }
 
     pub fn take_partial(&mut self) -> Outputs {

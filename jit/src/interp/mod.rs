@@ -7,7 +7,7 @@ mod columns;
 mod format;
 
 pub use columns::{Record, c_atof};
-pub use format::{format_g, format_outputs};
+pub use format::{format_g, format_outputs, write_g9, write_outputs};
 
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{EvalError, Evaluator, Input, MathErrors, NoInput, Warning};
@@ -57,6 +57,8 @@ pub struct Interpreter<'m> {
     nrecs: u64,
     nout: u64,
     partial: Outputs,
+    /// Expressions evaluated on request by [`Interpreter::field`].
+    fields: Vec<&'m Expr>,
 }
 
 impl<'m> Interpreter<'m> {
@@ -91,7 +93,25 @@ impl<'m> Interpreter<'m> {
             nrecs: 0,
             nout: 0,
             partial: Vec::new(),
+            fields: Vec::new(),
         })
+    }
+
+    /// Expressions of this module that are no definition (an `-o` format's number
+    /// fields, from [`Module::add_expression`]), evaluated by [`Interpreter::field`].
+    pub fn with_fields(mut self, fields: &[&'m Expr]) -> Self {
+        self.fields = fields.to_vec();
+        self
+    }
+
+    /// The value of the `k`th expression given to [`Interpreter::with_fields`].
+    pub fn field(&mut self, k: usize, input: &mut dyn Input) -> Result<f64, Error> {
+        let e = self
+            .fields
+            .get(k)
+            .copied()
+            .ok_or_else(|| EvalError::NotAvailable(format!("format field #{k}")))?;
+        Ok(self.ev.eval_top(e, input)?)
     }
 
     /// rcalc `-n`: one record with no input.
@@ -170,18 +190,24 @@ impl<'m> Interpreter<'m> {
         self.outputs(input)
     }
 
+    /// As [`Interpreter::outputs_for`], into a caller's buffer (appended); on an
+    /// error it holds the columns computed before it.
+    pub fn outputs_into(&mut self, input: &mut dyn Input, out: &mut Outputs) -> Result<(), Error> {
+        for (chan, o) in self.module.outputs() {
+            out.push((*chan, self.ev.eval_top(&o.body, input)?));
+        }
+        Ok(())
+    }
+
     fn outputs(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
         let mut out = Vec::with_capacity(self.module.outputs().len());
-        for (chan, o) in self.module.outputs() {
-            match self.ev.eval_top(&o.body, input) {
-                Ok(v) => out.push((*chan, v)),
-                Err(e) => {
-                    self.partial = out;
-                    return Err(e.into());
-                }
+        match self.outputs_into(input, &mut out) {
+            Ok(()) => Ok(out),
+            Err(e) => {
+                self.partial = out;
+                Err(e)
             }
         }
-        Ok(out)
     }
 
     /// The columns of a failed record computed before the error: rcalc has printed

@@ -1,15 +1,19 @@
 //! `radc calc`: rcalc, command-line compatible for the common options
-//! (`-e -f -n -s -t -w -u -b -i{a,d,f} -o{a,d,f} -o format -in -on`, file arguments;
-//! not `-i format`, `-p`, `-P`).
+//! (`-e -f -n -s -t -w -u -b -l -p -P -i{a,d,f} -o{a,d,f} -i format -o format -in -on`,
+//! file arguments).
 //! Syntax and resolution errors are diagnostics (exit 1); runtime warnings use rcalc's
 //! own words on stderr; bad options exit 2.
+//! Records are evaluated by the Cranelift JIT; `--interp` selects the reference
+//! interpreter (the JIT also falls back to it, with a note, for programs it declines).
 
 mod format;
 mod input_format;
 
 use super::USAGE_ERROR;
 use format::{Field, Value};
-use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs};
+use radc_jit::compile::StartError;
+use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs, write_outputs};
+use radc_jit::{JitProgram, RecordEngine};
 use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
@@ -19,7 +23,7 @@ use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: radc calc [-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
+const USAGE: &str = "usage: radc calc [--interp][-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
 
 /// Binary or text records (rcalc's `-id`, `-if`, `-od`, `-of`).
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -52,6 +56,8 @@ struct Options {
     ignore_eol: bool,
     /// `-p`: pass unmatched input through; `-P`: also records `cond` rejects.
     passive: Passive,
+    /// `--interp`: evaluate with the reference interpreter instead of the JIT.
+    interp: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -59,12 +65,6 @@ enum Passive {
     Off,
     Unmatched,
     AlsoRejected,
-}
-
-/// One output record.
-enum Produced {
-    Columns(Outputs),
-    Text(String),
 }
 
 /// The texts compiled so far, by `FileId`, for rendering diagnostics.
@@ -101,6 +101,7 @@ pub fn run(args: &[String]) -> ExitCode {
         blanks_equal: true,
         passive: Passive::Off,
         ignore_eol: false,
+        interp: false,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -116,6 +117,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 o.noinput = true;
                 module.set_folding(false);
             }
+            "--interp" => o.interp = true,
             "-w" => o.nowarn = !o.nowarn,
             "-u" => o.unbuffered = !o.unbuffered,
             "-b" => o.blanks_equal = !o.blanks_equal,
@@ -356,33 +358,86 @@ fn find_on_raypath(name: &str) -> Option<PathBuf> {
         .find(|c| c.exists())
 }
 
-fn execute<'m>(module: &'m Module, o: &'m Options) -> ExitCode {
-    let mut interp = match Interpreter::new(module, MathErrors::default()) {
-        Ok(i) => i,
+/// Native stack the JIT's code may use on the evaluation thread (of 512 MiB).
+const JIT_STACK_BUDGET: usize = 256 << 20;
+
+/// Runs the records with the JIT, unless `--interp` asks for the reference
+/// interpreter or the JIT declines the program (then with a note).
+fn execute(module: &Module, o: &Options) -> ExitCode {
+    let fields: Vec<&Expr> = o
+        .record_format
+        .iter()
+        .flat_map(|(_, exprs)| exprs.iter().flatten())
+        .collect();
+    let named: Vec<&str> = o
+        .input_format
+        .iter()
+        .flatten()
+        .filter_map(|f| match f {
+            Field::Number { expr, .. } => Some(expr.as_str()),
+            _ => None,
+        })
+        .collect();
+    if !o.interp {
+        match JitProgram::with_fields(module, MathErrors::default(), &fields, &named) {
+            Ok(mut jit) => {
+                jit.set_stack_budget(JIT_STACK_BUDGET);
+                return drive(&mut jit, o);
+            }
+            Err(StartError::Program(e)) => {
+                eprintln!("{e}");
+                return ExitCode::FAILURE;
+            }
+            Err(StartError::Jit(e)) => {
+                if !o.nowarn {
+                    eprintln!("radc calc: note: {e}; using the interpreter");
+                }
+            }
+        }
+    }
+    match Interpreter::new(module, MathErrors::default()) {
+        Ok(i) => drive(&mut i.with_fields(&fields), o),
         Err(e) => {
             eprintln!("{e}");
-            return ExitCode::FAILURE;
+            ExitCode::FAILURE
         }
-    };
+    }
+}
+
+/// Buffers reused from record to record: the `$N` values and the output bytes.
+#[derive(Default)]
+struct Scratch {
+    columns: Outputs,
+    bytes: Vec<u8>,
+}
+
+fn drive<E: RecordEngine>(engine: &mut E, o: &Options) -> ExitCode {
     let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+    let mut scratch = Scratch::default();
     let status = if o.noinput {
-        interp.begin_single();
-        let r = produce(&mut interp, o, &mut radc_lang::cal::eval::NoInput, None);
-        emit(&mut out, &mut interp, o, r.map(Some))
+        engine.begin_single();
+        let r = produce(
+            engine,
+            o,
+            &mut radc_lang::cal::eval::NoInput,
+            None,
+            &mut scratch,
+        );
+        emit(&mut out, engine, o, r.map(|()| true), &scratch)
     } else if o.files.is_empty() {
         let stdin = std::io::stdin();
-        let mut input = stdin.lock();
-        run_stream(&mut input, &mut interp, o, &mut out)
+        let mut input = std::io::BufReader::with_capacity(1 << 16, stdin.lock());
+        run_stream(&mut input, engine, o, &mut out, &mut scratch)
     } else {
         let mut status = Ok(());
         for f in &o.files {
             match std::fs::File::open(f) {
                 Ok(file) => {
-                    let mut input = std::io::BufReader::new(file);
+                    let mut input = std::io::BufReader::with_capacity(1 << 16, file);
                     // rcalc.c `execute` counts records (recno, -in, -on) per file.
-                    interp.start_file();
-                    status = run_stream(&mut input, &mut interp, o, &mut out);
+                    engine.start_file();
+                    status = run_stream(&mut input, engine, o, &mut out, &mut scratch);
                 }
                 Err(e) => {
                     let _ = out.flush();
@@ -410,59 +465,83 @@ enum Stop {
     Failed,
 }
 
-fn run_stream<'m>(
+fn run_stream<E: RecordEngine>(
     input: &mut dyn BufRead,
-    interp: &mut Interpreter<'m>,
-    o: &'m Options,
+    engine: &mut E,
+    o: &Options,
     out: &mut dyn Write,
+    scratch: &mut Scratch,
 ) -> Result<(), Stop> {
     if let Some(fields) = &o.input_format {
-        return run_matched(input, fields, interp, o, out);
+        return run_matched(input, fields, engine, o, out, scratch);
     }
     let mut nrecs = 0u64;
     let mut nout = 0u64;
-    let mut line = Vec::new();
-    loop {
-        let text: String = match o.itype {
-            Format::Ascii => {
-                line.clear();
-                match input.read_until(b'\n', &mut line) {
-                    Ok(0) => return Ok(()),
-                    Ok(_) => String::from_utf8_lossy(&line).into_owned(),
-                    Err(_) => return Err(Stop::Failed),
-                }
-            }
-            binary => match read_binary(input, binary, o.in_cols) {
-                Some(t) => t,
-                None => return Ok(()),
-            },
-        };
+    let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
+    let mut one = |line: &[u8], engine: &mut E, scratch: &mut Scratch| -> Result<bool, Stop> {
         nrecs += 1;
-        let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
-        let mut record = Record::new(&text, sep);
-        let result = match interp.begin_record(&mut record) {
-            Ok(true) => produce(interp, o, &mut record, None).map(Some),
-            Ok(false) => Ok(None),
-            Err(e) => Err(e),
+        let mut record = Record::from_bytes(line, sep);
+        let result = match engine.begin_record(&mut record) {
+            Ok(true) => produce(engine, o, &mut record, None, scratch).map(|()| true),
+            other => other,
         };
-        let produced = matches!(result, Ok(Some(_)));
-        emit(out, interp, o, result)?;
-        if produced {
-            nout += 1;
+        let produced = matches!(result, Ok(true));
+        emit(out, engine, o, result, scratch)?;
+        nout += u64::from(produced);
+        // At a limit this file is done; rcalc goes on with the next.
+        Ok(!((o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit)))
+    };
+    // A line that straddles the reader's buffer is gathered here; others are read
+    // where they lie.
+    let mut line = Vec::with_capacity(256);
+    loop {
+        if o.itype != Format::Ascii {
+            line.clear();
+            if !read_binary(input, o.itype, o.in_cols, &mut line) || !one(&line, engine, scratch)? {
+                return Ok(());
+            }
+            continue;
         }
-        if (o.in_limit > 0 && nrecs >= o.in_limit) || (o.out_limit > 0 && nout >= o.out_limit) {
-            return Ok(()); // this file is done; rcalc goes on with the next
+        let buf = match input.fill_buf() {
+            Ok(b) => b,
+            Err(_) => return Err(Stop::Failed),
+        };
+        if buf.is_empty() {
+            // The last line, without its newline.
+            if !line.is_empty() {
+                one(&line, engine, scratch)?;
+            }
+            return Ok(());
+        }
+        let Some(end) = memchr::memchr(b'\n', buf) else {
+            line.extend_from_slice(buf);
+            let n = buf.len();
+            input.consume(n);
+            continue;
+        };
+        let more = if line.is_empty() {
+            one(&buf[..=end], engine, scratch)?
+        } else {
+            line.extend_from_slice(&buf[..=end]);
+            let more = one(&line, engine, scratch)?;
+            line.clear();
+            more
+        };
+        input.consume(end + 1);
+        if !more {
+            return Ok(());
         }
     }
 }
 
 /// Records found by an `-i` format (rcalc.c `getrec`); `$N` is then an error.
-fn run_matched<'m>(
+fn run_matched<E: RecordEngine>(
     input: &mut dyn BufRead,
     fields: &[Field],
-    interp: &mut Interpreter<'m>,
-    o: &'m Options,
+    engine: &mut E,
+    o: &Options,
     out: &mut dyn Write,
+    scratch: &mut Scratch,
 ) -> Result<(), Stop> {
     let mut text = Vec::new();
     if input.read_to_end(&mut text).is_err() {
@@ -486,17 +565,18 @@ fn run_matched<'m>(
     } {
         nrecs += 1;
         for (name, v) in &m.numbers {
-            interp.set_named(name, *v);
+            engine.set_named(name, *v);
         }
         let mut no_columns = radc_lang::cal::eval::NoInput;
-        let result = match interp.begin_record(&mut no_columns) {
-            Ok(true) => produce(interp, o, &mut no_columns, Some(&m.strings)).map(Some),
-            Ok(false) => Ok(None),
-            Err(e) => Err(e),
+        let result = match engine.begin_record(&mut no_columns) {
+            Ok(true) => {
+                produce(engine, o, &mut no_columns, Some(&m.strings), scratch).map(|()| true)
+            }
+            other => other,
         };
-        let produced = matches!(result, Ok(Some(_)));
-        let rejected = matches!(result, Ok(None));
-        emit(out, interp, o, result)?;
+        let produced = matches!(result, Ok(true));
+        let rejected = matches!(result, Ok(false));
+        emit(out, engine, o, result, scratch)?;
         if rejected && o.passive == Passive::AlsoRejected && out.write_all(&m.text).is_err() {
             return Err(Stop::Failed);
         }
@@ -508,48 +588,62 @@ fn run_matched<'m>(
     Ok(())
 }
 
-/// Binary input records are turned into blank-separated text with full precision, so
-/// one record reader serves both.
-fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize) -> Option<String> {
+/// Binary input records are turned into blank-separated text with full precision
+/// (into `text`), so one record reader serves both. False at the end of the input.
+fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize, text: &mut Vec<u8>) -> bool {
     let (size, swap) = match f {
         Format::Double { swap } => (8, swap),
         Format::Float { swap } => (4, swap),
-        Format::Ascii => return None,
+        Format::Ascii => return false,
     };
-    let mut buf = vec![0u8; size * cols.max(1)];
-    input.read_exact(&mut buf).ok()?;
-    let mut text = String::new();
-    for chunk in buf.chunks(size) {
-        let mut b = chunk.to_vec();
-        if swap {
-            b.reverse();
+    let mut buf = [0u8; 8];
+    for _ in 0..cols.max(1) {
+        let word = &mut buf[..size];
+        if input.read_exact(word).is_err() {
+            return false;
         }
-        let v = if size == 8 {
-            f64::from_ne_bytes(b.try_into().ok()?)
-        } else {
-            f64::from(f32::from_ne_bytes(b.try_into().ok()?))
+        if swap {
+            word.reverse();
+        }
+        let v = match *word {
+            [a, b, c, d, e, f, g, h] => f64::from_ne_bytes([a, b, c, d, e, f, g, h]),
+            [a, b, c, d] => f64::from(f32::from_ne_bytes([a, b, c, d])),
+            _ => return false,
         };
-        text.push_str(&format!("{v:e} "));
+        let _ = write!(text, "{v:e} ");
     }
-    text.push('\n');
-    Some(text)
+    text.push(b'\n');
+    true
 }
 
-/// The output of an accepted record: the `$N` columns, or the `-o` format filled in
-/// (rcalc.c `putout`).
-fn produce<'m>(
-    interp: &mut Interpreter<'m>,
-    o: &'m Options,
+/// The output of an accepted record (rcalc.c `putout`), into `scratch.bytes`: the
+/// `$N` columns, or the `-o` format filled in. After an error, `scratch.columns`
+/// holds the columns computed before it.
+fn produce<E: RecordEngine>(
+    engine: &mut E,
+    o: &Options,
     input: &mut dyn radc_lang::cal::eval::Input,
     record_strings: Option<&HashMap<String, String>>,
-) -> Result<Produced, radc_jit::Error> {
+    scratch: &mut Scratch,
+) -> Result<(), radc_jit::Error> {
+    scratch.bytes.clear();
+    scratch.columns.clear();
     let Some((fields, exprs)) = &o.record_format else {
-        return interp.outputs_for(input).map(Produced::Columns);
+        engine.outputs_into(input, &mut scratch.columns)?;
+        match o.otype {
+            Format::Ascii => write_outputs(&mut scratch.bytes, &scratch.columns, o.sep),
+            binary => binary_record(&mut scratch.bytes, &scratch.columns, binary),
+        }
+        return Ok(());
     };
     let mut numbers = Vec::with_capacity(fields.len());
+    let mut k = 0;
     for e in exprs {
         numbers.push(match e {
-            Some(e) => interp.eval(e, input)?,
+            Some(_) => {
+                k += 1;
+                engine.field(k - 1, input)?
+            }
             None => 0.0,
         });
     }
@@ -569,20 +663,22 @@ fn produce<'m>(
             },
         });
     }
-    Ok(Produced::Text(format::render(
-        fields,
-        &values,
-        o.blanks_equal,
-    )))
+    let text = format::render(fields, &values, o.blanks_equal);
+    scratch.bytes.extend_from_slice(text.as_bytes());
+    Ok(())
 }
 
-fn emit(
+/// Writes a record's warnings, then its output (`Ok(true)`), nothing for a record
+/// `cond` rejected (`Ok(false)`), or the columns computed before an error and the
+/// error.
+fn emit<E: RecordEngine>(
     out: &mut dyn Write,
-    interp: &mut Interpreter<'_>,
+    engine: &mut E,
     o: &Options,
-    result: Result<Option<Produced>, radc_jit::Error>,
+    result: Result<bool, radc_jit::Error>,
+    scratch: &Scratch,
 ) -> Result<(), Stop> {
-    let warnings = interp.take_warnings();
+    let warnings = engine.take_warnings();
     if !o.nowarn && !warnings.is_empty() {
         let _ = out.flush();
         for w in warnings {
@@ -590,15 +686,8 @@ fn emit(
         }
     }
     match result {
-        Ok(Some(produced)) => {
-            let written = match (produced, o.otype) {
-                (Produced::Text(t), _) => out.write_all(t.as_bytes()),
-                (Produced::Columns(v), Format::Ascii) => {
-                    out.write_all(format_outputs(&v, o.sep).as_bytes())
-                }
-                (Produced::Columns(v), binary) => out.write_all(&binary_record(&v, binary)),
-            };
-            if written.is_err() {
+        Ok(true) => {
+            if out.write_all(&scratch.bytes).is_err() {
                 return Err(Stop::Failed);
             }
             if o.unbuffered && out.flush().is_err() {
@@ -606,9 +695,9 @@ fn emit(
             }
             Ok(())
         }
-        Ok(None) => Ok(()),
+        Ok(false) => Ok(()),
         Err(e) => {
-            let partial = format_outputs(&interp.take_partial(), o.sep);
+            let partial = format_outputs(&scratch.columns, o.sep);
             let _ = out.write_all(partial.trim_end_matches('\n').as_bytes());
             let _ = out.flush();
             eprintln!("{e}");
@@ -618,32 +707,35 @@ fn emit(
 }
 
 /// rcalc.c `bchanset`: missing columns are written as zeros.
-fn binary_record(values: &[(u32, f64)], f: Format) -> Vec<u8> {
-    let mut bytes = Vec::new();
+fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: Format) {
     let mut col = 0u32;
     for &(n, v) in values {
         col += 1;
         while col < n {
-            bytes.extend(encode(0.0, f));
+            encode(bytes, 0.0, f);
             col += 1;
         }
-        bytes.extend(encode(v, f));
+        encode(bytes, v, f);
     }
-    bytes
 }
 
-fn encode(v: f64, f: Format) -> Vec<u8> {
-    let mut b = match f {
-        Format::Double { .. } => v.to_ne_bytes().to_vec(),
-        _ => (v as f32).to_ne_bytes().to_vec(),
+fn encode(bytes: &mut Vec<u8>, v: f64, f: Format) {
+    let (mut word, len) = match f {
+        Format::Double { .. } => (v.to_ne_bytes(), 8),
+        _ => {
+            let mut w = [0u8; 8];
+            w[..4].copy_from_slice(&(v as f32).to_ne_bytes());
+            (w, 4)
+        }
     };
+    let word = &mut word[..len];
     if matches!(
         f,
         Format::Double { swap: true } | Format::Float { swap: true }
     ) {
-        b.reverse();
+        word.reverse();
     }
-    b
+    bytes.extend_from_slice(word);
 }
 
 fn render(sources: &Sources, diags: &[Diagnostic]) {
