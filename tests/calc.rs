@@ -20,11 +20,19 @@ fn radc_calc(args: &[&str], stdin: &str) -> Output {
         .stderr(Stdio::piped())
         .spawn()
         .expect("radc runs");
-    if let Some(mut input) = child.stdin.take() {
+    // Written from another thread: a big input must not wait for output to be read.
+    let writer = child.stdin.take().map(|mut input| {
+        let text = stdin.to_string();
         // A command that fails early may close its input: that is not this test's concern.
-        let _ = input.write_all(stdin.as_bytes());
+        std::thread::spawn(move || {
+            let _ = input.write_all(text.as_bytes());
+        })
+    });
+    let output = child.wait_with_output().expect("radc finishes");
+    if let Some(w) = writer {
+        let _ = w.join();
     }
-    child.wait_with_output().expect("radc finishes")
+    output
 }
 
 #[test]
@@ -116,7 +124,8 @@ fn binary_output_writes_doubles() {
 /// `--interp` gives the same bytes.
 #[test]
 fn jit_is_the_default_and_agrees_with_interp() {
-    let expr = "f(x,y) = if(x-y, sqrt(x*x+y*y)*sin(x), exp(-x*y/100)); $1 = f($1,$2); $2 = $1/($2-1)";
+    let expr =
+        "f(x,y) = if(x-y, sqrt(x*x+y*y)*sin(x), exp(-x*y/100)); $1 = f($1,$2); $2 = $1/($2-1)";
     let rows = "1 2\n3 1\n-4.5 1e3\n";
     let jit = radc_calc(&["-e", expr], rows);
     let interp = radc_calc(&["--interp", "-e", expr], rows);
@@ -126,4 +135,37 @@ fn jit_is_the_default_and_agrees_with_interp() {
     assert_eq!(jit.stdout, interp.stdout);
     assert_eq!(jit.stderr, interp.stderr);
     assert_eq!(String::from_utf8_lossy(&jit.stdout).lines().count(), 3);
+}
+
+/// Several threads write exactly what one writes: outputs in order, warnings and a
+/// fatal error at the record where they happen, `recno` counted across chunks, and
+/// `cond` filtering; over enough rows for many chunks per thread.
+#[test]
+fn threads_write_what_one_thread_writes() {
+    // About 1.2 MB: several chunks for each of three threads.
+    let rows: String = (0..200_000)
+        .map(|i| format!("{} {}\n", i % 1000, (i * 7) % 13))
+        .collect();
+    let program = "cond = $1 - 3; $1 = recno; $2 = $1/($2-5); $3 = sqrt($1)";
+    // The same, plus a record that stops the run (an undefined function is called).
+    let failing = "cond = $1 - 3; $1 = recno; $2 = $1/($2-5); $3 = if(recno-50000, nosuch(1), 2)";
+    for expr in [program, failing] {
+        let one = radc_calc(&["--threads", "1", "-e", expr], &rows);
+        let many = radc_calc(&["--threads", "3", "-e", expr], &rows);
+        assert_eq!(one.status.code(), many.status.code(), "{expr}");
+        assert!(one.stdout == many.stdout, "outputs differ for {expr}");
+        assert_eq!(
+            String::from_utf8_lossy(&one.stderr),
+            String::from_utf8_lossy(&many.stderr),
+            "{expr}"
+        );
+        assert!(one.stderr.len() > 1000, "warnings expected");
+    }
+    // Recursion (its depth warnings are once per run) keeps a program on one thread.
+    let fact = "f(n) = if(n-.5, n*f(n-1), 1); $1 = f(150 + $1 - $1)";
+    let rows = &rows[..10_000];
+    let one = radc_calc(&["--threads", "1", "-e", fact], rows);
+    let many = radc_calc(&["--threads", "3", "-e", fact], rows);
+    assert_eq!(one.stderr, many.stderr);
+    assert!(one.stdout == many.stdout);
 }

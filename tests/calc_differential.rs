@@ -309,7 +309,10 @@ fn run_set(name: &str, engine: &[&str], raypath: &str, failures: &mut Vec<String
             .collect();
         let outcome = run_radc(&args, &case.stdin_rows, raypath);
         if let Some(problem) = compare(golden, &outcome) {
-            failures.push(format!("[{name}/{}] radc calc {args:?}: {problem}", case.id));
+            failures.push(format!(
+                "[{name}/{}] radc calc {args:?}: {problem}",
+                case.id
+            ));
         }
     }
     cases.len()

@@ -11,6 +11,9 @@ pub trait RecordEngine {
     fn start_file(&mut self);
     /// Start rcalc's single `-n` record.
     fn begin_single(&mut self);
+    /// Number the next record `n + 1` (`recno`): for a chunk of a file run on
+    /// another engine than the records before it.
+    fn set_records_before(&mut self, n: u64);
     /// Start a record: set `recno`/`outno`, expire `=` values and test `cond`;
     /// `false` when `cond` rejects it.
     fn begin_record(&mut self, input: &mut dyn Input) -> Result<bool, Error>;
@@ -41,6 +44,9 @@ impl RecordEngine for Interpreter<'_> {
     }
     fn begin_single(&mut self) {
         Interpreter::begin_single(self)
+    }
+    fn set_records_before(&mut self, n: u64) {
+        Interpreter::set_records_before(self, n)
     }
     fn begin_record(&mut self, input: &mut dyn Input) -> Result<bool, Error> {
         Interpreter::begin_record(self, input)
@@ -74,6 +80,9 @@ impl RecordEngine for JitProgram {
     }
     fn begin_single(&mut self) {
         JitProgram::begin_single(self)
+    }
+    fn set_records_before(&mut self, n: u64) {
+        JitProgram::set_records_before(self, n)
     }
     fn begin_record(&mut self, input: &mut dyn Input) -> Result<bool, Error> {
         JitProgram::begin_record(self, input)

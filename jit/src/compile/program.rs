@@ -131,6 +131,11 @@ impl JitProgram {
         self.nout = 0;
     }
 
+    /// Number the next record `n + 1` (`recno`), as if `n` records came before.
+    pub fn set_records_before(&mut self, n: u64) {
+        self.nrecs = n;
+    }
+
     /// Start rcalc's single `-n` record.
     pub fn begin_single(&mut self) {
         self.ctx.next_record();
@@ -156,7 +161,10 @@ impl JitProgram {
         self.ctx.next_record();
         // `varvalue("cond") > 0.0` accepts: a NaN cond rejects the record.
         if let Some(c) = self.cond
-            && self.compiled.eval(c, &mut self.ctx, input)?.partial_cmp(&0.0)
+            && self
+                .compiled
+                .eval(c, &mut self.ctx, input)?
+                .partial_cmp(&0.0)
                 != Some(std::cmp::Ordering::Greater)
         {
             return Ok(false);

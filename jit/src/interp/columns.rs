@@ -43,7 +43,10 @@ impl<'a> Record<'a> {
         if self.sep.is_ascii_whitespace() {
             for _ in 1..n {
                 rest = skip_blanks(rest);
-                let word = rest.iter().position(|&c| is_c_space(c)).unwrap_or(rest.len());
+                let word = rest
+                    .iter()
+                    .position(|&c| is_c_space(c))
+                    .unwrap_or(rest.len());
                 rest = &rest[word..];
             }
         } else {
@@ -143,7 +146,11 @@ fn atof_bytes(s: &[u8]) -> (f64, Option<Errno>) {
         let starts =
             |word: &[u8]| rest.len() >= word.len() && rest[..word.len()].eq_ignore_ascii_case(word);
         if starts(b"inf") {
-            let v = if negative { f64::NEG_INFINITY } else { f64::INFINITY };
+            let v = if negative {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            };
             return (v, None);
         }
         if starts(b"nan") {
@@ -162,7 +169,9 @@ fn atof_bytes(s: &[u8]) -> (f64, Option<Errno>) {
     let mut scale = 0i32;
     let int_start = i;
     while i < b.len() && b[i].is_ascii_digit() {
-        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b[i] - b'0'));
+        mantissa = mantissa
+            .wrapping_mul(10)
+            .wrapping_add(u64::from(b[i] - b'0'));
         i += 1;
     }
     let mut nd = i - int_start;
@@ -170,7 +179,9 @@ fn atof_bytes(s: &[u8]) -> (f64, Option<Errno>) {
         i += 1;
         let frac_start = i;
         while i < b.len() && b[i].is_ascii_digit() {
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b[i] - b'0'));
+            mantissa = mantissa
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(b[i] - b'0'));
             i += 1;
         }
         scale = -((i - frac_start).min(1 << 20) as i32);
@@ -283,10 +294,23 @@ mod tests {
     #[test]
     fn fast_path_rounds_as_strtod() {
         for text in [
-            "0.1", "1.7976931348623157e308", "9007199254740993", "123456789012345678901",
-            "0.30000000000000004", "1e22", "1e23", "4.35", "-0", "-0.0e5", "12.5e-3",
+            "0.1",
+            "1.7976931348623157e308",
+            "9007199254740993",
+            "123456789012345678901",
+            "0.30000000000000004",
+            "1e22",
+            "1e23",
+            "4.35",
+            "-0",
+            "-0.0e5",
+            "12.5e-3",
         ] {
-            assert_eq!(c_atof(text).0.to_bits(), text.parse::<f64>().map_or(0, f64::to_bits), "{text}");
+            assert_eq!(
+                c_atof(text).0.to_bits(),
+                text.parse::<f64>().map_or(0, f64::to_bits),
+                "{text}"
+            );
         }
     }
 

@@ -126,6 +126,11 @@ impl<'m> Interpreter<'m> {
         self.nout = 0;
     }
 
+    /// Number the next record `n + 1` (`recno`), as if `n` records came before.
+    pub fn set_records_before(&mut self, n: u64) {
+        self.nrecs = n;
+    }
+
     /// Start rcalc's single `-n` record, for callers that evaluate their own
     /// expressions (an `-o` format) with [`Interpreter::eval`].
     pub fn begin_single(&mut self) {

@@ -8,6 +8,7 @@
 
 mod format;
 mod input_format;
+mod parallel;
 
 use super::USAGE_ERROR;
 use format::{Field, Value};
@@ -23,7 +24,7 @@ use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: radc calc [--interp][-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
+const USAGE: &str = "usage: radc calc [--interp][--threads N][-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
 
 /// Binary or text records (rcalc's `-id`, `-if`, `-od`, `-of`).
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -58,6 +59,8 @@ struct Options {
     passive: Passive,
     /// `--interp`: evaluate with the reference interpreter instead of the JIT.
     interp: bool,
+    /// `--threads N`: at most this many threads (default: the machine's cores).
+    threads: Option<usize>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -102,6 +105,7 @@ pub fn run(args: &[String]) -> ExitCode {
         passive: Passive::Off,
         ignore_eol: false,
         interp: false,
+        threads: None,
     };
     let mut i = 0;
     // rcalc reads options up to the first argument that does not start with '-', in
@@ -118,6 +122,10 @@ pub fn run(args: &[String]) -> ExitCode {
                 module.set_folding(false);
             }
             "--interp" => o.interp = true,
+            "--threads" => match value().and_then(|v| v.parse::<usize>().ok()) {
+                Some(n) if n >= 1 => o.threads = Some(n),
+                _ => return usage("--threads needs a count of at least 1"),
+            },
             "-w" => o.nowarn = !o.nowarn,
             "-u" => o.unbuffered = !o.unbuffered,
             "-b" => o.blanks_equal = !o.blanks_equal,
@@ -378,30 +386,42 @@ fn execute(module: &Module, o: &Options) -> ExitCode {
             _ => None,
         })
         .collect();
+    let threads = parallel::threads_for(module, o);
     if !o.interp {
-        match JitProgram::with_fields(module, MathErrors::default(), &fields, &named) {
-            Ok(mut jit) => {
-                jit.set_stack_budget(JIT_STACK_BUDGET);
-                return drive(&mut jit, o);
-            }
-            Err(StartError::Program(e)) => {
-                eprintln!("{e}");
-                return ExitCode::FAILURE;
-            }
-            Err(StartError::Jit(e)) => {
-                if !o.nowarn {
-                    eprintln!("radc calc: note: {e}; using the interpreter");
+        let mut engines = Vec::with_capacity(threads);
+        for _ in 0..threads {
+            match JitProgram::with_fields(module, MathErrors::default(), &fields, &named) {
+                Ok(mut jit) => {
+                    jit.set_stack_budget(JIT_STACK_BUDGET);
+                    engines.push(jit);
+                }
+                Err(StartError::Program(e)) => {
+                    eprintln!("{e}");
+                    return ExitCode::FAILURE;
+                }
+                Err(StartError::Jit(e)) => {
+                    if !o.nowarn {
+                        eprintln!("radc calc: note: {e}; using the interpreter");
+                    }
+                    break;
                 }
             }
         }
-    }
-    match Interpreter::new(module, MathErrors::default()) {
-        Ok(i) => drive(&mut i.with_fields(&fields), o),
-        Err(e) => {
-            eprintln!("{e}");
-            ExitCode::FAILURE
+        if engines.len() == threads {
+            return drive(&mut engines, o);
         }
     }
+    let mut engines = Vec::with_capacity(threads);
+    for _ in 0..threads {
+        match Interpreter::new(module, MathErrors::default()) {
+            Ok(i) => engines.push(i.with_fields(&fields)),
+            Err(e) => {
+                eprintln!("{e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    drive(&mut engines, o)
 }
 
 /// Buffers reused from record to record: the `$N` values and the output bytes.
@@ -411,11 +431,21 @@ struct Scratch {
     bytes: Vec<u8>,
 }
 
-fn drive<E: RecordEngine>(engine: &mut E, o: &Options) -> ExitCode {
+/// Runs the records on `engines` (one per thread; the first alone unless
+/// [`parallel::threads_for`] allowed more).
+fn drive<E: RecordEngine + Send>(engines: &mut [E], o: &Options) -> ExitCode {
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
     let mut scratch = Scratch::default();
+    let mut stream = |input: &mut dyn BufRead, engines: &mut [E], out: &mut dyn Write| match engines
+    {
+        [engine] => run_stream(input, engine, o, out, &mut scratch),
+        _ => parallel::run_stream(input, engines, o, out),
+    };
     let status = if o.noinput {
+        let Some(engine) = engines.first_mut() else {
+            return ExitCode::FAILURE;
+        };
         engine.begin_single();
         let r = produce(
             engine,
@@ -428,7 +458,7 @@ fn drive<E: RecordEngine>(engine: &mut E, o: &Options) -> ExitCode {
     } else if o.files.is_empty() {
         let stdin = std::io::stdin();
         let mut input = std::io::BufReader::with_capacity(1 << 16, stdin.lock());
-        run_stream(&mut input, engine, o, &mut out, &mut scratch)
+        stream(&mut input, engines, &mut out)
     } else {
         let mut status = Ok(());
         for f in &o.files {
@@ -436,8 +466,8 @@ fn drive<E: RecordEngine>(engine: &mut E, o: &Options) -> ExitCode {
                 Ok(file) => {
                     let mut input = std::io::BufReader::with_capacity(1 << 16, file);
                     // rcalc.c `execute` counts records (recno, -in, -on) per file.
-                    engine.start_file();
-                    status = run_stream(&mut input, engine, o, &mut out, &mut scratch);
+                    engines.iter_mut().for_each(|e| e.start_file());
+                    status = stream(&mut input, engines, &mut out);
                 }
                 Err(e) => {
                     let _ = out.flush();

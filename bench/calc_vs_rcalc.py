@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""radc calc against rcalc on the same rows, side by side in one run.
+
+Writes ROWS rows of two columns, then runs each configuration RUNS times on them and
+reports the best wall time and the best CPU time (user + system of the child), and
+checks that every output is byte-identical to rcalc's:
+
+    radc calc --interp --threads 1   the reference interpreter, one thread
+    radc calc --threads 1            the Cranelift JIT, one thread
+    radc calc                        the JIT on every core (records in chunks)
+    rcalc                            Radiance (pyradiance), one thread by design
+
+Usage: python3 bench/calc_vs_rcalc.py [--rows N] [--runs K] [--no-build]
+(needs the oracle for rcalc: bash tests/oracle/install.sh). Figures go to
+BENCHMARKS.md, section "radc calc vs rcalc".
+"""
+import argparse, os, resource, shutil, subprocess, sys, tempfile, time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXPR = "f(x,y) = if(x-y, sqrt(x*x + y*y) * sin(x) * cos(y), exp(-x*y/100)); $1 = f($1, $2)"
+
+
+def oracle_env():
+    env = dict(os.environ)
+    py = os.path.join(ROOT, ".oracle", "bin", "python")
+    if os.path.exists(py):
+        lib = subprocess.check_output(
+            [py, "-c", "import pyradiance, os; print(os.path.dirname(pyradiance.__file__))"],
+            text=True).strip()
+        env["PATH"] = os.path.join(lib, "bin") + os.pathsep + env["PATH"]
+        env["RAYPATH"] = "." + os.pathsep + os.path.join(lib, "lib")
+    return env
+
+
+def timed(cmd, stdin_path, out_path, env):
+    """Wall seconds and CPU seconds (user + system) of one run."""
+    with open(stdin_path, "rb") as fin, open(out_path, "wb") as fout:
+        start = time.perf_counter()
+        p = subprocess.Popen(cmd, stdin=fin, stdout=fout, stderr=subprocess.DEVNULL, env=env)
+        _, status, usage = os.wait4(p.pid, 0)
+        wall = time.perf_counter() - start
+    if status != 0:
+        sys.exit(f"{cmd[0]} failed (status {status})")
+    return wall, usage.ru_utime + usage.ru_stime
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rows", type=int, default=1_000_000)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--no-build", action="store_true")
+    args = ap.parse_args()
+    if not args.no_build:
+        subprocess.check_call(["cargo", "build", "--release", "--quiet", "--bin", "radc"], cwd=ROOT)
+    radc = os.path.join(ROOT, "target", "release", "radc")
+    env = oracle_env()
+    rcalc = shutil.which("rcalc", path=env["PATH"])
+    work = tempfile.mkdtemp()
+    try:
+        rows = os.path.join(work, "in.txt")
+        with open(rows, "w") as f:
+            for i in range(args.rows):
+                f.write(f"{(i % 1000) / 100:.6f}\t{(i % 997) / 97 - 5:.6f}\n")
+        configs = [
+            ("radc calc --interp --threads 1", [radc, "calc", "--interp", "--threads", "1", "-e", EXPR]),
+            ("radc calc --threads 1 (JIT)", [radc, "calc", "--threads", "1", "-e", EXPR]),
+            (f"radc calc (JIT, {os.cpu_count()} cores)", [radc, "calc", "-e", EXPR]),
+        ]
+        if rcalc:
+            configs.append(("rcalc (Radiance)", [rcalc, "-e", EXPR]))
+        best = {}
+        for run in range(args.runs):
+            for label, cmd in configs:
+                wall, cpu = timed(cmd, rows, os.path.join(work, label[:4] + str(len(best))), env)
+                b = best.setdefault(label, [wall, cpu])
+                b[0], b[1] = min(b[0], wall), min(b[1], cpu)
+        # Outputs, from one more run each, compared byte for byte.
+        outs = {}
+        for label, cmd in configs:
+            path = os.path.join(work, f"out{len(outs)}")
+            timed(cmd, rows, path, env)
+            outs[label] = open(path, "rb").read()
+        load = os.getloadavg()[0]
+        print(f"rows: {args.rows}   runs: {args.runs} (best of)   load average: {load:.1f}")
+        print(f"expression: {EXPR}")
+        ref = best.get("rcalc (Radiance)")
+        print(f"{'program':36} {'wall s':>8} {'cpu s':>8}  {'vs rcalc (wall, cpu)':>22}")
+        for label, _ in configs:
+            wall, cpu = best[label]
+            ratio = f"{ref[0] / wall:8.2f}x {ref[1] / cpu:8.2f}x" if ref else ""
+            print(f"{label:36} {wall:8.3f} {cpu:8.3f}  {ratio:>22}")
+        want = outs.get("rcalc (Radiance)", next(iter(outs.values())))
+        for label, data in outs.items():
+            print(f"output of {label}: {'identical to rcalc' if data == want else 'DIFFERS'}")
+        if any(d != want for d in outs.values()):
+            sys.exit(1)
+    finally:
+        shutil.rmtree(work)
+
+
+if __name__ == "__main__":
+    main()
