@@ -1105,7 +1105,10 @@ fn an_unsaved_function_file_is_what_scenes_read() {
     client.notification("textDocument/publishDiagnostics");
     open(&mut client, &scene, SHADED);
     let published = client.notification("textDocument/publishDiagnostics");
-    assert_eq!((published["uri"].as_str(), codes(&published)), (Some(scene.as_str()), vec![]));
+    assert_eq!(
+        (published["uri"].as_str(), codes(&published)),
+        (Some(scene.as_str()), vec![])
+    );
     // An unsaved edit of the function file is what the scene's check reads.
     change(&mut client, &cal, 2, "k : 6;\n");
     let mut scene_codes = None;
@@ -1118,7 +1121,10 @@ fn an_unsaved_function_file_is_what_scenes_read() {
     }
     assert_eq!(scene_codes, Some(vec!["E0601".to_string()]));
     // Saved as it was: the scene reads the disk again once the document closes.
-    client.notify("textDocument/didClose", json!({"textDocument": {"uri": cal}}));
+    client.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": cal}}),
+    );
     change(&mut client, &scene, 2, SHADED);
     loop {
         let published = client.notification("textDocument/publishDiagnostics");

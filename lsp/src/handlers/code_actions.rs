@@ -117,7 +117,10 @@ mod tests {
             );
         });
         with_cal_document("a = sinn(1) + bb;\nbc = 2;\n", |doc| {
-            assert_eq!(fixes(doc), [("sinn".into(), "sin".into())]);
+            assert_eq!(
+                fixes(doc),
+                [("sinn".into(), "sin".into()), ("bb".into(), "bc".into())]
+            );
         });
     }
 }
