@@ -1,30 +1,51 @@
 #!/usr/bin/env python3
-"""Edit-to-diagnostics latency of `radc lsp`: opens a generated scene of N primitives,
-then makes edits (one real changed per edit) and times each didChange until the
-matching publishDiagnostics arrives. Prints the median and worst in milliseconds.
+"""Latency of `radc lsp`, driven over stdio as an editor drives it.
+
+Writes a scene of N primitives that uses a function file (`f.cal`, through a
+`brightfunc`) into a temporary folder, opens both, then:
+  - open -> first diagnostics of the scene;
+  - E one-character edits of the scene (a digit of one radius changes), each timed
+    from `didChange` to the `publishDiagnostics` of that version; sent as the
+    server asks (incremental range edits when it offers them, else the full text);
+  - H hovers and H completions, each timed from request to response;
+  - the server's memory (VmRSS and peak VmHWM from /proc);
+  - the server's parse counters (`radc/stats`, enabled by RADC_LSP_STATS=1) before
+    and after the edits: the scene is re-parsed once per edit, the .cal never.
 
 usage: bench/lsp_latency.py [path/to/radc] [primitives] [edits]
-
-Measured Nov 2026 on the 2-core project machine, `cargo build --release`, full-text sync,
-times including this script's JSON encoding:
-  bench/lsp_latency.py target/release/radc 1000 30    open 3.3 ms, edit median 1.8 ms, worst 6.7 ms
-  bench/lsp_latency.py target/release/radc 10000 30   open 34.5 ms, edit median 26.3 ms, worst 57.1 ms
+Figures and the command are in BENCHMARKS.md (language server latency).
 """
-import json, subprocess, sys, time
+import json, os, statistics, subprocess, sys, tempfile, time
 
 radc = sys.argv[1] if len(sys.argv) > 1 else "target/release/radc"
-n = int(sys.argv[2]) if len(sys.argv) > 2 else 10000
-edits = int(sys.argv[3]) if len(sys.argv) > 3 else 30
+n = int(sys.argv[2]) if len(sys.argv) > 2 else 50000
+edits = int(sys.argv[3]) if len(sys.argv) > 3 else 20
+hovers = 20
+
+CAL = "k : 2 * 3;\nscale(x) = x * k;\nrefl = scale(Dx) * .1 + .5;\n"
+HEAD = "void brightfunc shade\n2 refl f.cal\n0\n0\n\n"
 
 
-def scene(k):
-    parts = [f"void plastic m{i}\n0\n0\n5 .5 .5 .5 0 0\n" for i in range(50)]
+def scene():
+    parts = [HEAD]
+    parts += [f"shade plastic m{i}\n0\n0\n5 .5 .5 .5 0 0\n" for i in range(50)]
     for i in range(n):
-        parts.append(f"m{i % 50} sphere s{i}\n0\n0\n4 {i} 0 0 {1 + k / 1000}\n")
+        parts.append(f"m{i % 50} sphere s{i}\n0\n0\n4 {i} 0 0 1.5\n")
     return "".join(parts)
 
 
-p = subprocess.Popen([radc, "lsp"], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+folder = tempfile.mkdtemp(prefix="lsp-latency-")
+with open(os.path.join(folder, "f.cal"), "w") as f:
+    f.write(CAL)
+text = scene()
+with open(os.path.join(folder, "scene.rad"), "w") as f:
+    f.write(text)
+scene_uri = "file://" + os.path.join(folder, "scene.rad")
+cal_uri = "file://" + os.path.join(folder, "f.cal")
+
+env = dict(os.environ, RADC_LSP_STATS="1")
+p = subprocess.Popen([radc, "lsp"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=env)
+next_id = [100]
 
 
 def send(msg):
@@ -51,26 +72,110 @@ def wait(pred):
             return m
 
 
-uri = "file:///tmp/latency.rad"
+def request(method, params):
+    next_id[0] += 1
+    i = next_id[0]
+    send({"jsonrpc": "2.0", "id": i, "method": method, "params": params})
+    return wait(lambda m: m.get("id") == i and "method" not in m).get("result")
+
+
+def diagnostics_of(uri, version=None):
+    return lambda m: (m.get("method") == "textDocument/publishDiagnostics"
+                      and m["params"]["uri"] == uri
+                      and (version is None or m["params"].get("version") == version))
+
+
+def memory():
+    fields = {}
+    with open(f"/proc/{p.pid}/status") as f:
+        for line in f:
+            key, _, value = line.partition(":")
+            if key in ("VmRSS", "VmHWM"):
+                fields[key] = int(value.split()[0]) / 1024
+    return fields
+
+
+def cpu():
+    """The server's CPU time so far (user + system), in seconds."""
+    with open(f"/proc/{p.pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def ms(seconds):
+    return 1000 * seconds
+
+
 send({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": {"capabilities": {}}})
-wait(lambda m: m.get("id") == 1)
+init = wait(lambda m: m.get("id") == 1)
+sync = init["result"]["capabilities"]["textDocumentSync"]["change"]
 send({"jsonrpc": "2.0", "method": "initialized", "params": {}})
+send({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {
+    "uri": cal_uri, "languageId": "calcomp", "version": 1, "text": CAL}}})
+wait(diagnostics_of(cal_uri))
 t = time.perf_counter()
 send({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {"textDocument": {
-    "uri": uri, "languageId": "radiance", "version": 1, "text": scene(0)}}})
-wait(lambda m: m.get("method") == "textDocument/publishDiagnostics")
-print(f"{n} primitives ({len(scene(0)) // 1024} KiB): open -> diagnostics {1000 * (time.perf_counter() - t):.1f} ms")
+    "uri": scene_uri, "languageId": "radiance", "version": 1, "text": text}}})
+first = wait(diagnostics_of(scene_uri))
+opened = ms(time.perf_counter() - t)
+print(f"{n} primitives ({len(text) // 1024} KiB) using f.cal: open -> diagnostics {opened:.1f} ms "
+      f"({len(first['params']['diagnostics'])} diagnostics); sync kind {sync}")
+before = request("radc/stats", None)
+
+# The radius "1.5" of sphere s{n//2}: its line, and the column of the digit "5".
+target = n // 2
+lines = text.split("\n")
+line_no = lines.index(f"m{target % 50} sphere s{target}") + 3
+column = len(lines[line_no]) - 1
 times = []
+cpu_before = cpu()
 for k in range(1, edits + 1):
-    text = scene(k)
+    digit = str(k % 10)
+    lines[line_no] = lines[line_no][:column] + digit
+    if sync == 2:
+        change = {"range": {"start": {"line": line_no, "character": column},
+                            "end": {"line": line_no, "character": column + 1}}, "text": digit}
+    else:
+        change = {"text": "\n".join(lines)}
     t = time.perf_counter()
     send({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
-        "textDocument": {"uri": uri, "version": k + 1}, "contentChanges": [{"text": text}]}})
-    wait(lambda m: m.get("method") == "textDocument/publishDiagnostics"
-         and m["params"].get("version") == k + 1)
-    times.append(1000 * (time.perf_counter() - t))
-times.sort()
-print(f"edit -> diagnostics over {edits} edits: median {times[len(times) // 2]:.1f} ms, worst {times[-1]:.1f} ms")
+        "textDocument": {"uri": scene_uri, "version": k + 1}, "contentChanges": [change]}})
+    wait(diagnostics_of(scene_uri, k + 1))
+    times.append(ms(time.perf_counter() - t))
+cpu_per_edit = ms(cpu() - cpu_before) / edits
+after = request("radc/stats", None)
+print(f"edit -> diagnostics over {edits} one-character edits: median {statistics.median(times):.1f} ms, "
+      f"worst {max(times):.1f} ms; server CPU {cpu_per_edit:.1f} ms per edit")
+
+
+def timed(method, params):
+    samples = []
+    for _ in range(hovers):
+        t = time.perf_counter()
+        request(method, params)
+        samples.append(ms(time.perf_counter() - t))
+    return statistics.median(samples), max(samples)
+
+
+where = {"textDocument": {"uri": scene_uri}, "position": {"line": line_no - 3, "character": 1}}
+h = timed("textDocument/hover", where)
+print(f"hover on a modifier of line {line_no - 2}: median {h[0]:.1f} ms, worst {h[1]:.1f} ms")
+where = {"textDocument": {"uri": scene_uri}, "position": {"line": line_no + 1, "character": 0}}
+c = timed("textDocument/completion", where)
+print(f"completion after the last line of a primitive: median {c[0]:.1f} ms, worst {c[1]:.1f} ms")
+where = {"textDocument": {"uri": cal_uri}, "position": {"line": 1, "character": 15}}
+c = timed("textDocument/hover", where)
+print(f"hover in f.cal: median {c[0]:.1f} ms, worst {c[1]:.1f} ms")
+mem = memory()
+print(f"server memory: {mem.get('VmRSS', 0):.0f} MB resident, peak {mem.get('VmHWM', 0):.0f} MB")
+scene_path = os.path.realpath(os.path.join(folder, "scene.rad"))
+cal_path = os.path.realpath(os.path.join(folder, "f.cal"))
+print("radc/stats after the edits:", json.dumps(after))
+for name, path in (("scene.rad", scene_path), ("f.cal", cal_path)):
+    b = (before or {}).get("parses", {}).get(path, 0)
+    a = (after or {}).get("parses", {}).get(path, 0)
+    print(f"parses of {name}: {b} after opening, {a} after the {edits} edits")
+
 send({"jsonrpc": "2.0", "id": 2, "method": "shutdown"})
 wait(lambda m: m.get("id") == 2)
 send({"jsonrpc": "2.0", "method": "exit"})

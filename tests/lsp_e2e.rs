@@ -22,8 +22,13 @@ struct Client {
 
 impl Client {
     fn start() -> Client {
+        Client::start_with_env(&[])
+    }
+
+    fn start_with_env(vars: &[(&str, &str)]) -> Client {
         let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
             .arg("lsp")
+            .envs(vars.iter().copied())
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -219,7 +224,7 @@ fn a_session_from_initialize_to_exit() {
     let init = initialize(&mut client, json!({"inlayHints": {"enabled": true}}));
     assert_eq!(init["serverInfo"]["name"], "radc");
     let caps = &init["capabilities"];
-    assert_eq!(caps["textDocumentSync"]["change"], 1);
+    assert_eq!(caps["textDocumentSync"]["change"], 2);
     for provider in [
         "hoverProvider",
         "definitionProvider",
@@ -717,21 +722,19 @@ fn a_rif_makes_its_files_one_scene() {
 }
 
 #[test]
-fn calcomp_and_rif_documents_are_not_checked_as_scenes() {
+fn rif_documents_get_no_analysis() {
     let ws = workspace();
     let dir = ws.path.parent().expect("folder").to_path_buf();
     let mut client = Client::start();
     initialize(&mut client, json!(null));
-    for name in ["f.cal", "p.rif"] {
-        let uri = format!("file://{}", dir.join(name).display());
-        open(&mut client, &uri, "x = 1;\nscene = a.rad\n");
-        let hover = client.request(
-            "textDocument/hover",
-            at(&uri, json!({"line": 0, "character": 0})),
-        );
-        assert_eq!(hover, Value::Null);
-    }
-    // Publishing nothing for them: the next diagnostics are the scene's.
+    let uri = format!("file://{}", dir.join("p.rif").display());
+    open(&mut client, &uri, "scene = a.rad\n");
+    let hover = client.request(
+        "textDocument/hover",
+        at(&uri, json!({"line": 0, "character": 0})),
+    );
+    assert_eq!(hover, Value::Null);
+    // Publishing nothing for it: the next diagnostics are the scene's.
     open(&mut client, &ws.uri, TIDY);
     assert_eq!(
         client.notification("textDocument/publishDiagnostics")["uri"],
@@ -911,4 +914,419 @@ fn the_server_says_what_radc_check_says_across_the_corpora() {
         mismatches.len(),
         mismatches.join("\n")
     );
+}
+
+const CAL: &str = "k : 2 * 3;\nscale(x) = x * k;\nrefl = scale(Dx) + .5;\nbad = sinn(1);\n";
+const SHADED: &str = "void brightfunc shade\n2 refl f.cal\n0\n0\n\nshade plastic red\n0\n0\n5 .5 .5 .5 0 0\n\nred sphere ball\n0\n0\n4 0 0 0 1\n";
+
+/// A folder with `f.cal` and `shaded.rad`, which uses it, both on disk.
+fn calcomp_workspace() -> (tempfile::TempDir, String, String, std::path::PathBuf) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let root = dir.path().canonicalize().expect("canonical");
+    std::fs::write(root.join("f.cal"), CAL).expect("cal");
+    std::fs::write(root.join("shaded.rad"), SHADED).expect("scene");
+    let cal = format!("file://{}", root.join("f.cal").display());
+    let scene = format!("file://{}", root.join("shaded.rad").display());
+    (dir, cal, scene, root)
+}
+
+fn markdown(hover: &Value) -> &str {
+    hover["contents"]["value"].as_str().unwrap_or_default()
+}
+
+#[test]
+fn calcomp_documents_are_checked_and_navigable() {
+    let (_dir, cal, scene, root) = calcomp_workspace();
+    let mut client = Client::start();
+    let init = initialize(&mut client, json!(null));
+    for provider in ["workspaceSymbolProvider", "codeActionProvider"] {
+        assert_eq!(init["capabilities"][provider], true, "{provider}");
+    }
+    open(&mut client, &cal, CAL);
+    // The diagnostics `radc check f.cal` gives, word for word.
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(published["uri"], cal.as_str());
+    assert_eq!(lsp_said(&published), cli_said(&root.join("f.cal")));
+    assert_eq!(
+        published["diagnostics"],
+        json!([{
+            "range": range(3, 6, 3, 13),
+            "severity": 2,
+            "code": "W0606",
+            "source": "radc",
+            "message": "function 'sinn' is not defined in this file",
+            "relatedInformation": [{
+                "location": {"uri": cal, "range": range(3, 6, 3, 13)},
+                "message": "hint: did you mean 'sin'?"
+            }]
+        }])
+    );
+
+    // Hover: a constant with its value, a parameter, a library name.
+    let hover = client.request("textDocument/hover", at(&cal, pos(CAL, "k;", 0, 0)));
+    assert_eq!(
+        markdown(&hover),
+        "**k** — constant (`:`), defined on line 1\n\n```calcomp\nk : 2 * 3\n```\n\nvalue: `6`"
+    );
+    assert_eq!(hover["range"], range(1, 15, 1, 16));
+    let hover = client.request("textDocument/hover", at(&cal, pos(CAL, "x *", 0, 0)));
+    assert_eq!(markdown(&hover), "**x** — parameter 1 of **scale**");
+    let hover = client.request("textDocument/hover", at(&cal, pos(CAL, "Dx", 0, 1)));
+    assert_eq!(
+        markdown(&hover),
+        "**Dx** — Dx: ray direction (renderer, per ray)"
+    );
+    let hover = client.request("textDocument/hover", at(&cal, pos(CAL, "scale(Dx", 0, 0)));
+    assert_eq!(
+        markdown(&hover),
+        "**scale** — function of 1 parameter (`=`), defined on line 2\n\n```calcomp\nscale(x) = x * k\n```"
+    );
+
+    // Definition, references, document symbols, completion.
+    let definition = client.request("textDocument/definition", at(&cal, pos(CAL, "k;", 0, 0)));
+    assert_eq!(definition, json!({"uri": cal, "range": range(0, 0, 0, 1)}));
+    let mut params = at(&cal, pos(CAL, "scale", 0, 1));
+    params["context"] = json!({"includeDeclaration": true});
+    let references = client.request("textDocument/references", params);
+    assert_eq!(
+        references,
+        json!([{"uri": cal, "range": range(1, 0, 1, 5)}, {"uri": cal, "range": range(2, 7, 2, 12)}])
+    );
+    let symbols = client.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": cal}}),
+    );
+    let outline: Vec<(String, u64, String)> = symbols
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|s| {
+                    let name = s["name"].as_str().unwrap_or_default().to_string();
+                    let detail = s["detail"].as_str().unwrap_or_default().to_string();
+                    (name, s["kind"].as_u64().unwrap_or(0), detail)
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    assert_eq!(
+        outline,
+        [
+            ("k".to_string(), 14, ":".to_string()),
+            ("scale".to_string(), 12, "(x) =".to_string()),
+            ("refl".to_string(), 13, "=".to_string()),
+            ("bad".to_string(), 13, "=".to_string())
+        ]
+    );
+    let completion = client.request("textDocument/completion", at(&cal, pos(CAL, "x * k", 0, 4)));
+    let labels: Vec<&str> = completion
+        .as_array()
+        .map(|a| a.iter().filter_map(|i| i["label"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(&labels[..6], ["x", "bad", "refl", "scale", "k", "acos"]);
+    assert!(labels.contains(&"noise3") && labels.contains(&"Dx") && labels.contains(&"PI"));
+
+    // A quick fix for the misspelled function.
+    let actions = client.request(
+        "textDocument/codeAction",
+        json!({"textDocument": {"uri": cal}, "range": range(3, 6, 3, 13),
+               "context": {"diagnostics": published["diagnostics"]}}),
+    );
+    assert_eq!(actions[0]["title"], "Change to 'sin'");
+    assert_eq!(actions[0]["kind"], "quickfix");
+    assert_eq!(
+        actions[0]["edit"]["changes"][cal.as_str()],
+        json!([{"range": range(3, 6, 3, 10), "newText": "sin"}])
+    );
+
+    // From the scene into the function file, and back.
+    open(&mut client, &scene, SHADED);
+    let definition = client.request(
+        "textDocument/definition",
+        at(&scene, pos(SHADED, "refl", 0, 1)),
+    );
+    assert_eq!(definition, json!({"uri": cal, "range": range(2, 0, 2, 4)}));
+    let mut params = at(&cal, pos(CAL, "refl", 0, 0));
+    params["context"] = json!({"includeDeclaration": true});
+    let references = client.request("textDocument/references", params);
+    assert_eq!(
+        references,
+        json!([{"uri": cal, "range": range(2, 0, 2, 4)}, {"uri": scene, "range": range(1, 2, 1, 6)}])
+    );
+    let rename = client.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": scene}, "position": pos(SHADED, "refl", 0, 2), "newName": "shine"}),
+    );
+    assert_eq!(
+        rename,
+        json!({"changes": {
+            cal.as_str(): [{"range": range(2, 0, 2, 4), "newText": "shine"}],
+            scene.as_str(): [{"range": range(1, 2, 1, 6), "newText": "shine"}]
+        }})
+    );
+    let rename = client.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": cal}, "position": pos(CAL, "x)", 0, 0), "newName": "t"}),
+    );
+    assert_eq!(
+        rename,
+        json!({"changes": {cal.as_str(): [
+            {"range": range(1, 6, 1, 7), "newText": "t"},
+            {"range": range(1, 11, 1, 12), "newText": "t"}
+        ]}})
+    );
+    // Not a name: refused.
+    let rename = client.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": cal}, "position": pos(CAL, "k", 0, 0), "newName": "2k"}),
+    );
+    assert_eq!(rename, Value::Null);
+
+    // Workspace symbols across both documents.
+    let found = client.request("workspace/symbol", json!({"query": "sha"}));
+    assert_eq!(
+        found,
+        json!([{"name": "shade", "kind": 23, "location": {"uri": scene, "range": range(0, 16, 0, 21)}, "containerName": "shaded.rad"}])
+    );
+    let found = client.request("workspace/symbol", json!({"query": "scal"}));
+    assert_eq!(
+        found,
+        json!([{"name": "scale", "kind": 12, "location": {"uri": cal, "range": range(1, 0, 1, 5)}, "containerName": "f.cal"}])
+    );
+
+    client.shutdown();
+}
+
+#[test]
+fn an_unsaved_function_file_is_what_scenes_read() {
+    let (_dir, cal, scene, _root) = calcomp_workspace();
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, &cal, CAL);
+    client.notification("textDocument/publishDiagnostics");
+    open(&mut client, &scene, SHADED);
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(
+        (published["uri"].as_str(), codes(&published)),
+        (Some(scene.as_str()), vec![])
+    );
+    // An unsaved edit of the function file is what the scene's check reads.
+    change(&mut client, &cal, 2, "k : 6;\n");
+    let mut scene_codes = None;
+    for _ in 0..3 {
+        let published = client.notification("textDocument/publishDiagnostics");
+        if published["uri"] == scene.as_str() {
+            scene_codes = Some(codes(&published));
+            break;
+        }
+    }
+    assert_eq!(scene_codes, Some(vec!["E0601".to_string()]));
+    // Saved as it was: the scene reads the disk again once the document closes.
+    client.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": cal}}),
+    );
+    change(&mut client, &scene, 2, SHADED);
+    loop {
+        let published = client.notification("textDocument/publishDiagnostics");
+        if published["uri"] == scene.as_str() {
+            assert_eq!(codes(&published), Vec::<String>::new());
+            break;
+        }
+    }
+    client.shutdown();
+}
+
+#[test]
+fn semantic_tokens_say_what_each_word_is() {
+    let ws = workspace();
+    let dir = ws.path.parent().expect("folder").to_path_buf();
+    let mut client = Client::start();
+    let init = initialize(&mut client, json!(null));
+    let legend = &init["capabilities"]["semanticTokensProvider"]["legend"];
+    assert_eq!(
+        legend["tokenTypes"],
+        json!([
+            "keyword",
+            "type",
+            "variable",
+            "number",
+            "string",
+            "comment",
+            "macro",
+            "function",
+            "parameter",
+            "operator"
+        ])
+    );
+    assert_eq!(
+        legend["tokenModifiers"],
+        json!(["declaration", "defaultLibrary"])
+    );
+    let scene = "# lamp\n!genbox m b 1 1 1\nm sphere s\n0\n0\n4 0 0 0 .5\n";
+    open(&mut client, &ws.uri, scene);
+    let tokens = client.request(
+        "textDocument/semanticTokens/full",
+        json!({"textDocument": {"uri": ws.uri}}),
+    );
+    assert_eq!(
+        tokens["data"],
+        json!([
+            0, 0, 6, 5, 0, // # lamp: comment
+            1, 0, 17, 6, 0, // the command
+            1, 0, 1, 1, 0, // m: modifier
+            0, 2, 6, 0, 0, // sphere: type keyword
+            0, 7, 1, 2, 1, // s: declared name
+            1, 0, 1, 3, 0, 1, 0, 1, 3, 0, 1, 0, 1, 3, 0, 0, 2, 1, 3, 0, 0, 2, 1, 3, 0, 0, 2, 1, 3,
+            0, 0, 2, 2, 3, 0
+        ])
+    );
+    let cal = format!("file://{}", dir.join("g.cal").display());
+    open(&mut client, &cal, "f(x) = sin(x)*2;\n");
+    let tokens = client.request(
+        "textDocument/semanticTokens/full",
+        json!({"textDocument": {"uri": cal}}),
+    );
+    assert_eq!(
+        tokens["data"],
+        json!([
+            0, 0, 1, 7, 1, 0, 2, 1, 8, 1, 0, 3, 1, 9, 0, 0, 2, 3, 7, 2, 0, 4, 1, 8, 0, 0, 2, 1, 9,
+            0, 0, 1, 1, 3, 0
+        ])
+    );
+    client.shutdown();
+}
+
+#[test]
+fn a_misspelled_modifier_gets_a_quick_fix() {
+    let ws = workspace();
+    let uri = ws.uri.as_str();
+    let text = "void plastic red\n0\n0\n5 .5 .1 .1 0 0\nrd sphere ball\n0\n0\n4 0 0 0 1\n";
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, uri, text);
+    let published = client.notification("textDocument/publishDiagnostics");
+    let undefined: Vec<Value> = published["diagnostics"]
+        .as_array()
+        .map(|a| a.iter().filter(|d| d["code"] == "E0301").cloned().collect())
+        .unwrap_or_default();
+    assert_eq!(undefined.len(), 1, "{published}");
+    let actions = client.request(
+        "textDocument/codeAction",
+        json!({"textDocument": {"uri": uri}, "range": range(4, 0, 4, 2),
+               "context": {"diagnostics": published["diagnostics"]}}),
+    );
+    assert_eq!(
+        actions,
+        json!([{
+            "title": "Change to 'red'",
+            "kind": "quickfix",
+            "diagnostics": undefined,
+            "edit": {"changes": {uri: [{"range": range(4, 0, 4, 2), "newText": "red"}]}},
+            "isPreferred": true
+        }])
+    );
+    client.shutdown();
+}
+
+#[test]
+fn renaming_a_material_reaches_the_scenes_of_its_rif() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let root = dir.path().canonicalize().expect("canonical");
+    let mat = "void plastic paint\n0\n0\n5 .5 .5 .5 0 0\n";
+    let walls = "paint polygon wall\n0\n0\n9 0 0 0 1 0 0 1 1 0\n";
+    // table.rad redefines paint after its first use: later uses are its own.
+    let table = "paint sphere leg\n0\n0\n4 0 0 0 1\nvoid plastic paint\n0\n0\n5 1 1 1 0 0\npaint sphere top\n0\n0\n4 0 0 1 1\n";
+    std::fs::write(root.join("basic.mat"), mat).expect("mat");
+    std::fs::write(root.join("walls.rad"), walls).expect("walls");
+    std::fs::write(root.join("table.rad"), table).expect("table");
+    std::fs::write(
+        root.join("room.rif"),
+        "materials = basic.mat\nscene = walls.rad table.rad\n",
+    )
+    .expect("rif");
+    let uri = |name: &str| format!("file://{}", root.join(name).display());
+    let mut client = Client::start();
+    initialize(&mut client, json!(null));
+    open(&mut client, &uri("basic.mat"), mat);
+    client.notification("textDocument/publishDiagnostics");
+    let rename = client.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": uri("basic.mat")}, "position": {"line": 0, "character": 14}, "newName": "white"}),
+    );
+    let edit = |l0, c0, c1| json!([{"range": range(l0, c0, l0, c1), "newText": "white"}]);
+    assert_eq!(
+        rename,
+        json!({"changes": {
+            uri("basic.mat"): edit(0, 13, 18),
+            uri("walls.rad"): edit(0, 0, 5),
+            uri("table.rad"): edit(0, 0, 5)
+        }})
+    );
+    // From a use in a scene file, the same edit.
+    open(&mut client, &uri("walls.rad"), walls);
+    let again = client.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": uri("walls.rad")}, "position": {"line": 0, "character": 1}, "newName": "white"}),
+    );
+    assert_eq!(again, rename);
+    client.shutdown();
+}
+
+#[test]
+fn an_edit_reparses_only_the_edited_file() {
+    let (_dir, cal, scene, root) = calcomp_workspace();
+    let mut child_env = Client::start_with_env(&[("RADC_LSP_STATS", "1")]);
+    let client = &mut child_env;
+    initialize(client, json!(null));
+    open(client, &cal, CAL);
+    client.notification("textDocument/publishDiagnostics");
+    open(client, &scene, SHADED);
+    client.notification("textDocument/publishDiagnostics");
+    let counts = |client: &mut Client| client.request("radc/stats", Value::Null)["parses"].clone();
+    let cal_path = root.join("f.cal").display().to_string();
+    let scene_path = root.join("shaded.rad").display().to_string();
+    assert_eq!(
+        counts(client),
+        json!({cal_path.as_str(): 1, scene_path.as_str(): 1})
+    );
+    // A range edit (incremental sync): one character of the scene.
+    let one_char = |version, line, start, end, text: &str| {
+        json!({"textDocument": {"uri": scene, "version": version}, "contentChanges": [
+            {"range": range(line, start, line, end), "text": text}]})
+    };
+    client.notify("textDocument/didChange", one_char(2, 8, 3, 4, "6"));
+    let published = client.notification("textDocument/publishDiagnostics");
+    assert_eq!(
+        (published["version"].clone(), codes(&published)),
+        (json!(2), Vec::<String>::new())
+    );
+    assert_eq!(
+        counts(client),
+        json!({cal_path.as_str(): 1, scene_path.as_str(): 2})
+    );
+    client.notify("textDocument/didChange", one_char(3, 10, 1, 2, ""));
+    let published = client.notification("textDocument/publishDiagnostics");
+    let undefined: Vec<&Value> = published["diagnostics"]
+        .as_array()
+        .map(|a| a.iter().filter(|d| d["code"] == "E0301").collect())
+        .unwrap_or_default();
+    assert_eq!(undefined.len(), 1, "{published}");
+    assert_eq!(undefined[0]["range"], range(10, 0, 10, 2));
+    assert_eq!(
+        undefined[0]["message"],
+        "modifier 'rd' is not defined before this point"
+    );
+    assert_eq!(
+        counts(client),
+        json!({cal_path.as_str(): 1, scene_path.as_str(): 3})
+    );
+    change(client, &cal, 2, &CAL.replace("2 * 3", "2 * 4"));
+    for _ in 0..2 {
+        client.notification("textDocument/publishDiagnostics");
+    }
+    assert_eq!(
+        counts(client),
+        json!({cal_path.as_str(): 2, scene_path.as_str(): 3})
+    );
+    child_env.shutdown();
 }

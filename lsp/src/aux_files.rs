@@ -4,7 +4,9 @@
 //! then each RAYPATH folder), and the output of `!` lines that run one of radc's
 //! built-in generators (in-process, pure). Any other command is never run.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use radc_generators::{GenError, Host};
 use radc_lang::db::AuxFiles;
@@ -19,12 +21,37 @@ const MAX_AUX_FILE: u64 = 64 << 20;
 pub struct DiskAuxFiles {
     raypath: Vec<PathBuf>,
     generators: bool,
+    overlay: Overlay,
+}
+
+/// Texts of open documents by canonical path: a scene reads the function file the
+/// editor shows, saved or not.
+#[derive(Clone, Default)]
+pub struct Overlay(Arc<Mutex<HashMap<PathBuf, String>>>);
+
+impl Overlay {
+    /// Sets (or with `None` removes) the text of one file.
+    pub fn set(&self, path: PathBuf, text: Option<String>) {
+        let mut map = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        match text {
+            Some(t) => map.insert(path, t),
+            None => map.remove(&path),
+        };
+    }
+
+    fn get(&self, path: &Path) -> Option<String> {
+        let map = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if map.is_empty() {
+            return None;
+        }
+        map.get(&crate::rif::canonical(path)).cloned()
+    }
 }
 
 impl DiskAuxFiles {
     /// `raypath` from the client's settings, or else the `RAYPATH` variable; whether
     /// built-in generators expand.
-    pub fn new(config: &Config) -> Self {
+    pub fn new(config: &Config, overlay: Overlay) -> Self {
         let raypath = config.raypath.clone().unwrap_or_else(|| {
             std::env::var_os("RAYPATH")
                 .map(|v| std::env::split_paths(&v).collect())
@@ -33,6 +60,7 @@ impl DiskAuxFiles {
         DiskAuxFiles {
             raypath,
             generators: config.generators,
+            overlay,
         }
     }
 
@@ -62,6 +90,9 @@ impl AuxFiles for DiskAuxFiles {
 
     fn read(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<String> {
         let path = self.find(name, scene_path)?;
+        if let Some(text) = self.overlay.get(&path) {
+            return Some(text);
+        }
         if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {
             return None;
         }

@@ -55,7 +55,12 @@ pub fn to_lsp(doc: &Document<'_>, d: &Diagnostic) -> Option<lsp::Diagnostic> {
 
 /// Every diagnostic of the document, as `radc check FILE` reports them (or, for a
 /// document a `.rif` lists, `radc check` of all the rif's files, shown for this one).
+/// A calcomp document gets what `radc check FILE.cal` reports.
 pub fn for_document(doc: &Document<'_>) -> Vec<lsp::Diagnostic> {
+    if doc.kind == crate::document::Kind::Cal {
+        let all = radc_lang::db::check_cal(doc.db, doc.file);
+        return all.iter().filter_map(|d| to_lsp(doc, d)).collect();
+    }
     let all = match doc.scene {
         Some(set) => radc_lang::db::check_scene_set(doc.db, set),
         None => radc_lang::db::check_scene(doc.db, doc.file),

@@ -14,6 +14,39 @@ pub struct Document<'a> {
     pub uri: &'a Uri,
     /// The files read with this one as a scene (from a `.rif`), if any.
     pub scene: Option<SceneSet>,
+    pub kind: Kind,
+    /// Every open document and scene file read from disk (this one included), for
+    /// requests that reach across files.
+    pub workspace: Vec<OpenFile>,
+}
+
+/// What a document holds, by its extension: `.cal` is calcomp, `.rif` a rad input
+/// file, anything else (including untitled documents) a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Scene,
+    Cal,
+    Rif,
+}
+
+impl Kind {
+    pub fn of(uri: &Uri) -> Kind {
+        let name = uri.as_str().rsplit('/').next().unwrap_or("");
+        let ext = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("cal") => Kind::Cal,
+            Some("rif") => Kind::Rif,
+            _ => Kind::Scene,
+        }
+    }
+}
+
+/// One file of the workspace as the cross-file requests see it.
+#[derive(Clone, Debug)]
+pub struct OpenFile {
+    pub uri: Uri,
+    pub file: SourceFile,
+    pub kind: Kind,
 }
 
 /// A definition and the file it is in.
@@ -47,7 +80,7 @@ impl<'a> Document<'a> {
         db::modifier_scope(self.db, self.file)
     }
 
-    fn lines(&self) -> &'a LineIndex {
+    pub fn lines(&self) -> &'a LineIndex {
         db::line_index(self.db, self.file)
     }
 
@@ -98,6 +131,9 @@ impl<'a> Document<'a> {
     pub fn uri_of(&self, file: SourceFile) -> Uri {
         if file == self.file {
             return self.uri.clone();
+        }
+        if let Some(o) = self.workspace.iter().find(|o| o.file == file) {
+            return o.uri.clone();
         }
         Uri::from_file_path(file.path(self.db)).unwrap_or_else(|| self.uri.clone())
     }
@@ -198,6 +234,24 @@ pub fn with_document<T>(text: &str, f: impl FnOnce(&Document<'_>) -> T) -> T {
         file,
         uri: &uri,
         scene: None,
+        kind: Kind::Scene,
+        workspace: Vec::new(),
+    })
+}
+
+/// Builds a one-file database holding a calcomp document, for handler tests.
+#[cfg(test)]
+pub fn with_cal_document<T>(text: &str, f: impl FnOnce(&Document<'_>) -> T) -> T {
+    let mut db = Database::default();
+    let file = db.add_file("/scenes/test.cal", text);
+    let uri: Uri = "file:///scenes/test.cal".parse().expect("a valid uri");
+    f(&Document {
+        db: &db,
+        file,
+        uri: &uri,
+        scene: None,
+        kind: Kind::Cal,
+        workspace: Vec::new(),
     })
 }
 

@@ -5,6 +5,7 @@
 //! auxiliary files exist. It never runs a `!` command.
 
 mod aux_files;
+mod calcomp;
 mod config;
 mod diagnostics;
 mod document;
@@ -37,7 +38,9 @@ fn serve_stdio() -> std::io::Result<()> {
     runtime.block_on(async {
         let (input, guarded) = tokio::io::duplex(1 << 16);
         tokio::spawn(framing::forward_valid_frames(tokio::io::stdin(), guarded));
-        let (service, socket) = LspService::new(server::Backend::new);
+        let (service, socket) = LspService::build(server::Backend::new)
+            .custom_method("radc/stats", server::Backend::stats)
+            .finish();
         Server::new(input, tokio::io::stdout(), socket)
             .serve(service)
             .await;

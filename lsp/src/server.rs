@@ -3,7 +3,9 @@
 //!
 //! tower-lsp-server runs handlers concurrently, so the session sits behind one mutex
 //! that no handler holds across an `await`: every handler runs to completion on the
-//! state it saw. Text changes carry versions and the newest wins. Diagnostics are
+//! state it saw. Text changes carry versions: a whole text older than the current one
+//! is ignored, range edits (incremental sync) apply in arrival order (each handler
+//! applies its edit before its first `await`). Diagnostics are
 //! computed and sent under a second, async lock, each time from the current text, so
 //! the last diagnostics a client receives are always those of its latest text. A
 //! handler that panics (a bug) answers "nothing" instead of taking the server down.
@@ -17,7 +19,7 @@ use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer};
 
 use crate::config::Config;
-use crate::document::Document;
+use crate::document::{Document, Kind};
 use crate::handlers;
 use crate::session::Session;
 
@@ -43,23 +45,51 @@ impl Backend {
         self.session.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// Runs a handler on one open scene document; `None` if it is not open, is not a
-    /// scene (calcomp and rad input files have no server support yet), or the handler
-    /// panicked.
+    /// Runs a handler on one open document (a scene or a calcomp file: `.rif` files
+    /// have no analysis); `None` if it is not open, or the handler panicked.
     fn read<T>(&self, uri: &Uri, f: impl FnOnce(&Document<'_>, &Config) -> Option<T>) -> Option<T> {
-        if !is_scene(uri) {
-            return None;
-        }
         let session = self.session();
-        let doc = session.document(uri)?;
+        let doc = session.document(uri).filter(|d| d.kind != Kind::Rif)?;
         catch_unwind(AssertUnwindSafe(|| f(&doc, &session.config)))
             .ok()
             .flatten()
     }
 
+    /// [`Backend::read`] for requests only scenes answer.
+    fn read_scene<T>(
+        &self,
+        uri: &Uri,
+        f: impl FnOnce(&Document<'_>, &Config) -> Option<T>,
+    ) -> Option<T> {
+        self.read(uri, |doc, config| {
+            (doc.kind == Kind::Scene).then(|| f(doc, config)).flatten()
+        })
+    }
+
+    /// The `radc/stats` request (when `RADC_LSP_STATS` is set): how many times each
+    /// file was parsed, so a benchmark can show that an edit re-parses only its file.
+    pub async fn stats(&self) -> Result<serde_json::Value> {
+        if std::env::var_os("RADC_LSP_STATS").is_none() {
+            return Ok(serde_json::Value::Null);
+        }
+        let counts = self.session().parse_counts();
+        let parses: serde_json::Map<String, serde_json::Value> = counts
+            .into_iter()
+            .map(|(path, n)| (path, n.into()))
+            .collect();
+        Ok(serde_json::json!({ "parses": parses }))
+    }
+
     fn write(&self, f: impl FnOnce(&mut Session)) {
         let mut session = self.session();
         let _ = catch_unwind(AssertUnwindSafe(|| f(&mut session)));
+    }
+
+    async fn publish_all(&self) {
+        let uris = self.session().open_uris();
+        for uri in uris {
+            self.publish(uri).await;
+        }
     }
 
     async fn publish(&self, uri: Uri) {
@@ -70,7 +100,7 @@ impl Backend {
             let version = session.version(&uri);
             let diagnostics = session
                 .document(&uri)
-                .filter(|_| is_scene(&uri))
+                .filter(|doc| doc.kind != Kind::Rif)
                 .and_then(|doc| {
                     catch_unwind(AssertUnwindSafe(|| crate::diagnostics::for_document(&doc))).ok()
                 });
@@ -84,20 +114,12 @@ impl Backend {
     }
 }
 
-/// Whether a document is a scene, by its extension (`.cal` and `.rif` are not;
-/// anything else, including untitled documents, is taken as one).
-fn is_scene(uri: &Uri) -> bool {
-    let path = uri.as_str().rsplit('/').next().unwrap_or("");
-    let ext = path.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
-    !matches!(ext.as_deref(), Some("cal" | "rif"))
-}
-
 fn capabilities() -> ServerCapabilities {
     ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Options(
             TextDocumentSyncOptions {
                 open_close: Some(true),
-                change: Some(TextDocumentSyncKind::FULL),
+                change: Some(TextDocumentSyncKind::INCREMENTAL),
                 save: Some(TextDocumentSyncSaveOptions::Supported(true)),
                 ..TextDocumentSyncOptions::default()
             },
@@ -116,6 +138,16 @@ fn capabilities() -> ServerCapabilities {
         }),
         document_formatting_provider: Some(OneOf::Left(true)),
         color_provider: Some(ColorProviderCapability::Simple(true)),
+        workspace_symbol_provider: Some(OneOf::Left(true)),
+        code_action_provider: Some(CodeActionProviderCapability::Simple(true)),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: handlers::semantic_tokens::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                range: None,
+                ..SemanticTokensOptions::default()
+            },
+        )),
         ..ServerCapabilities::default()
     }
 }
@@ -155,12 +187,14 @@ impl LanguageServer for Backend {
 
     async fn did_change(&self, params: DidChangeTextDocumentParams) {
         let uri = params.text_document.uri;
-        // Full-text sync: the last change holds the whole new text.
-        if let Some(change) = params.content_changes.into_iter().last() {
-            let version = params.text_document.version;
-            self.write(|s| s.change(&uri, version, change.text));
+        let version = params.text_document.version;
+        self.write(|s| s.change(&uri, version, params.content_changes));
+        if Kind::of(&uri) == Kind::Cal {
+            // Scenes that load this function file read its new text.
+            self.publish_all().await;
+        } else {
+            self.publish(uri).await;
         }
-        self.publish(uri).await;
     }
 
     async fn did_save(&self, params: DidSaveTextDocumentParams) {
@@ -201,8 +235,9 @@ impl LanguageServer for Backend {
 
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
         let p = params.text_document_position_params;
-        Ok(self.read(&p.text_document.uri, |doc, _| {
-            handlers::hover::hover(doc, p.position)
+        Ok(self.read(&p.text_document.uri, |doc, _| match doc.kind {
+            Kind::Cal => handlers::cal_hover::hover(doc, p.position),
+            _ => handlers::hover::hover(doc, p.position),
         }))
     }
 
@@ -211,23 +246,26 @@ impl LanguageServer for Backend {
         params: GotoDefinitionParams,
     ) -> Result<Option<GotoDefinitionResponse>> {
         let p = params.text_document_position_params;
-        Ok(self.read(&p.text_document.uri, |doc, _| {
-            handlers::definition::definition(doc, p.position)
+        Ok(self.read(&p.text_document.uri, |doc, _| match doc.kind {
+            Kind::Cal => handlers::cal_definition::definition(doc, p.position),
+            _ => handlers::definition::definition(doc, p.position),
         }))
     }
 
     async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
         let p = params.text_document_position;
         let declaration = params.context.include_declaration;
-        Ok(self.read(&p.text_document.uri, |doc, _| {
-            handlers::references::references(doc, p.position, declaration)
+        Ok(self.read(&p.text_document.uri, |doc, _| match doc.kind {
+            Kind::Cal => handlers::cal_references::references(doc, p.position, declaration),
+            _ => handlers::references::references(doc, p.position, declaration),
         }))
     }
 
     async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
         let p = params.text_document_position;
-        Ok(self.read(&p.text_document.uri, |doc, _| {
-            handlers::rename::rename(doc, p.position, &params.new_name)
+        Ok(self.read(&p.text_document.uri, |doc, _| match doc.kind {
+            Kind::Cal => handlers::cal_rename::rename(doc, p.position, &params.new_name),
+            _ => handlers::rename::rename(doc, p.position, &params.new_name),
         }))
     }
 
@@ -236,7 +274,7 @@ impl LanguageServer for Backend {
         params: DocumentHighlightParams,
     ) -> Result<Option<Vec<DocumentHighlight>>> {
         let p = params.text_document_position_params;
-        Ok(self.read(&p.text_document.uri, |doc, _| {
+        Ok(self.read_scene(&p.text_document.uri, |doc, _| {
             handlers::highlights::highlights(doc, p.position)
         }))
     }
@@ -246,28 +284,64 @@ impl LanguageServer for Backend {
         params: DocumentSymbolParams,
     ) -> Result<Option<DocumentSymbolResponse>> {
         Ok(self.read(&params.text_document.uri, |doc, _| {
-            Some(DocumentSymbolResponse::Nested(handlers::symbols::symbols(
-                doc,
-            )))
+            let symbols = match doc.kind {
+                Kind::Cal => handlers::cal_symbols::symbols(doc),
+                _ => handlers::symbols::symbols(doc),
+            };
+            Some(DocumentSymbolResponse::Nested(symbols))
         }))
+    }
+
+    async fn symbol(
+        &self,
+        params: WorkspaceSymbolParams,
+    ) -> Result<Option<WorkspaceSymbolResponse>> {
+        let session = self.session();
+        let found = catch_unwind(AssertUnwindSafe(|| {
+            handlers::workspace_symbols::symbols(&session, &params.query)
+        }));
+        Ok(found.ok().map(WorkspaceSymbolResponse::Flat))
     }
 
     async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
         let p = params.text_document_position;
         Ok(self.read(&p.text_document.uri, |doc, _| {
-            handlers::completion::completion(doc, p.position).map(CompletionResponse::Array)
+            let items = match doc.kind {
+                Kind::Cal => handlers::cal_completion::completion(doc, p.position),
+                _ => handlers::completion::completion(doc, p.position),
+            };
+            items.map(CompletionResponse::Array)
+        }))
+    }
+
+    async fn semantic_tokens_full(
+        &self,
+        params: SemanticTokensParams,
+    ) -> Result<Option<SemanticTokensResult>> {
+        Ok(self.read(&params.text_document.uri, |doc, _| {
+            let tokens = handlers::semantic_tokens::tokens(doc);
+            Some(SemanticTokensResult::Tokens(tokens))
+        }))
+    }
+
+    async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
+        Ok(self.read(&params.text_document.uri, |doc, _| {
+            Some(handlers::code_actions::code_actions(
+                doc,
+                &params.context.diagnostics,
+            ))
         }))
     }
 
     async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
         let p = params.text_document_position_params;
-        Ok(self.read(&p.text_document.uri, |doc, _| {
+        Ok(self.read_scene(&p.text_document.uri, |doc, _| {
             handlers::signature_help::signature_help(doc, p.position)
         }))
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
-        Ok(self.read(&params.text_document.uri, |doc, config| {
+        Ok(self.read_scene(&params.text_document.uri, |doc, config| {
             config
                 .inlay_hints
                 .then(|| handlers::inlay_hints::inlay_hints(doc, params.range))
@@ -275,13 +349,13 @@ impl LanguageServer for Backend {
     }
 
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
-        Ok(self.read(&params.text_document.uri, |doc, _| {
+        Ok(self.read_scene(&params.text_document.uri, |doc, _| {
             handlers::formatting::formatting(doc)
         }))
     }
 
     async fn document_color(&self, params: DocumentColorParams) -> Result<Vec<ColorInformation>> {
-        let found = self.read(&params.text_document.uri, |doc, _| {
+        let found = self.read_scene(&params.text_document.uri, |doc, _| {
             Some(handlers::colors::document_colors(doc))
         });
         Ok(found.unwrap_or_default())
@@ -291,7 +365,7 @@ impl LanguageServer for Backend {
         &self,
         params: ColorPresentationParams,
     ) -> Result<Vec<ColorPresentation>> {
-        let found = self.read(&params.text_document.uri, |doc, _| {
+        let found = self.read_scene(&params.text_document.uri, |doc, _| {
             Some(handlers::colors::presentations(
                 doc,
                 params.color,

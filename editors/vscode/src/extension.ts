@@ -1,4 +1,5 @@
-// The VS Code side of radc: starts `radc lsp` and hands it the scene documents.
+// The VS Code side of radc: starts `radc lsp` and hands it the scene and calcomp
+// documents.
 // Everything the editor shows (diagnostics, hover, completion, formatting) comes from
 // the server; this file only wires settings and the process.
 
@@ -34,6 +35,7 @@ function createClient(): LanguageClient {
     documentSelector: [
       { scheme: "file", language: "radiance" },
       { scheme: "untitled", language: "radiance" },
+      { scheme: "file", language: "calcomp" },
     ],
     initializationOptions: serverSettings(),
     synchronize: {

@@ -18,6 +18,23 @@ pub fn check(file: FileId, text: &str, env: &Env) -> Vec<Diagnostic> {
     check_with_entries(file, text, env, None)
 }
 
+/// What `radc check FILE.cal` reports for a file on its own. A file is either for
+/// the renderer (ray variables, rayinit.cal's names) or for rcalc and the generators
+/// (`$N` outputs, `in(n)`): it is judged as the one it fits, preferring the renderer.
+pub fn check_file(file: FileId, text: &str) -> Vec<Diagnostic> {
+    let errors = |d: &Vec<Diagnostic>| d.iter().filter(|d| d.is_error()).count();
+    let renderer = check(file, text, &Env::renderer());
+    if errors(&renderer) == 0 {
+        return renderer;
+    }
+    let rcalc = check(file, text, &Env::rcalc());
+    if errors(&rcalc) < errors(&renderer) {
+        rcalc
+    } else {
+        renderer
+    }
+}
+
 /// [`check`], with the names a scene uses from this file as entry points: the other
 /// definitions of the file are reported unused.
 pub fn check_with_entries(

@@ -8,13 +8,18 @@
 //! [`FileSystem::generation`] when the disk may have changed, which re-runs the checks
 //! (not the parses).
 
+mod cal;
 mod queries;
 
+pub use cal::{
+    CalDef, CalIndex, CalName, CalUse, ParsedCal, cal_index, cal_values, check_cal, parse_cal,
+};
 pub use queries::{
     ParsedScene, check_scene, check_scene_set, format_scene, line_index, modifier_scope,
     parse_scene,
 };
 
+use std::collections::HashMap;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
@@ -106,6 +111,10 @@ impl AuxFiles for AssumeAuxFilesExist {
 #[salsa::db]
 pub trait Db: salsa::Database {
     fn aux_files(&self) -> &dyn AuxFiles;
+
+    /// Called each time a file is parsed (a query really ran, not a memo reused):
+    /// how the server's statistics show that an edit re-parses only the edited file.
+    fn note_parse(&self, _file: SourceFile) {}
 }
 
 /// The one database implementation. Cloning it is cheap (a snapshot for readers).
@@ -118,6 +127,8 @@ pub struct Database {
     /// Names of the queries salsa executed (not reused), when logging is on: how the
     /// tests see incrementality.
     log: Arc<Mutex<Option<Vec<String>>>>,
+    /// How many times each file (by path) was parsed.
+    parses: Arc<Mutex<HashMap<String, u64>>>,
 }
 
 #[salsa::db]
@@ -127,6 +138,12 @@ impl salsa::Database for Database {}
 impl Db for Database {
     fn aux_files(&self) -> &dyn AuxFiles {
         &*self.aux_files
+    }
+
+    fn note_parse(&self, file: SourceFile) {
+        let path = file.path(self).clone();
+        let mut parses = self.parses.lock().unwrap_or_else(|e| e.into_inner());
+        *parses.entry(path).or_default() += 1;
     }
 }
 
@@ -153,6 +170,7 @@ impl Database {
             aux_files,
             next_id: Arc::default(),
             log,
+            parses: Arc::default(),
         };
         FileSystem::new(&db, 0);
         db
@@ -210,6 +228,14 @@ impl Database {
     pub fn enable_logging(&self) {
         let mut log = self.log.lock().unwrap_or_else(|e| e.into_inner());
         log.get_or_insert_with(Vec::new);
+    }
+
+    /// How many times each file was parsed so far, by path, sorted by path.
+    pub fn parse_counts(&self) -> Vec<(String, u64)> {
+        let parses = self.parses.lock().unwrap_or_else(|e| e.into_inner());
+        let mut counts: Vec<(String, u64)> = parses.iter().map(|(p, n)| (p.clone(), *n)).collect();
+        counts.sort();
+        counts
     }
 
     /// The queries executed since the last call.

@@ -8,7 +8,7 @@ use super::{Db, FileSystem, SceneSet, SourceFile};
 use crate::diagnostic::Diagnostic;
 use crate::scene::scope::ModifierScope;
 use crate::scene::syntax::SceneFile;
-use crate::scene::{self, CommandExpander, Expansion, FileLookup, LowerInput};
+use crate::scene::{self, CommandExpander, Expansion, FileLookup, Keep, Lowering};
 use crate::schema::FileKind;
 use crate::source::{self, FileId, LineIndex};
 
@@ -23,6 +23,7 @@ pub struct ParsedScene {
 /// reported exactly as `radc check` reports it when reading from disk.
 #[salsa::tracked(returns(ref), no_eq)]
 pub fn parse_scene(db: &dyn Db, file: SourceFile) -> ParsedScene {
+    db.note_parse(file);
     let id = file.id(db);
     let text = file.text(db);
     let (syntax, mut diagnostics) = if text.contains('\0') {
@@ -70,17 +71,17 @@ fn check_files(db: &dyn Db, files: &[SourceFile]) -> Vec<Diagnostic> {
         fs.generation(db);
     }
     let parsed: Vec<&ParsedScene> = files.iter().map(|f| parse_scene(db, *f)).collect();
-    let inputs: Vec<LowerInput<'_>> = files
-        .iter()
-        .zip(&parsed)
-        .map(|(f, p)| LowerInput {
-            file: f.id(db),
-            syntax: &p.syntax,
-            warn_unused: f.warn_unused(db),
-        })
-        .collect();
     let lookup = DbLookup::new(db, files);
-    let (_scene, more) = scene::lower_with(&inputs, &lookup, &lookup);
+    // Only what a check needs is kept (`radc check` lowers the same way): surfaces are
+    // checked and dropped, so an edit re-lowers without building the scene's IR.
+    let mut lowering = Lowering::new(&lookup, &lookup, Keep::Modifiers);
+    for (f, p) in files.iter().zip(&parsed) {
+        let warn_unused = f.warn_unused(db);
+        for item in &p.syntax.items {
+            lowering.item(item, warn_unused);
+        }
+    }
+    let (_scene, more) = lowering.finish();
     let mut all: Vec<Diagnostic> = parsed
         .iter()
         .flat_map(|p| p.diagnostics.iter().cloned())

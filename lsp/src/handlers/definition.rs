@@ -1,7 +1,8 @@
 //! `textDocument/definition`: where the modifier or alias under the cursor is
 //! defined (the most recent definition above the use, as Radiance binds it, or in an
 //! earlier file of a `.rif` scene); on a string that names a file (function file, data,
-//! picture, font, octree, mesh), that file, found as the checks find it.
+//! picture, font, octree, mesh), that file, found as the checks find it; on a calcomp
+//! name in a function argument, its definition in the primitive's function files.
 
 use radc_lang::db::Db;
 use radc_lang::schema::{self, ArgSide, StringKind};
@@ -16,7 +17,10 @@ pub fn definition(doc: &Document<'_>, pos: Position) -> Option<GotoDefinitionRes
             uri: doc.uri_of(target.file),
             range: doc.range_in(target.file, target.def.name_span),
         },
-        None => file_argument(doc, offset)?,
+        None => match super::cal_definition::scene_definition(doc, offset) {
+            Some(location) => location,
+            None => file_argument(doc, offset)?,
+        },
     };
     Some(GotoDefinitionResponse::Scalar(location))
 }

@@ -2,6 +2,13 @@
 //! the request's parameters and returns the response; none of them waits, locks or
 //! does IO.
 
+pub mod cal_completion;
+pub mod cal_definition;
+pub mod cal_hover;
+pub mod cal_references;
+pub mod cal_rename;
+pub mod cal_symbols;
+pub mod code_actions;
 pub mod colors;
 pub mod completion;
 pub mod definition;
@@ -11,8 +18,10 @@ pub mod hover;
 pub mod inlay_hints;
 pub mod references;
 pub mod rename;
+pub mod semantic_tokens;
 pub mod signature_help;
 pub mod symbols;
+pub mod workspace_symbols;
 
 #[cfg(test)]
 mod properties {
