@@ -12,14 +12,14 @@ const PARALLEL_THRESHOLD: usize = 4096;
 /// (and the build's recursion bounded) whatever the distribution of primitives.
 const SAH_DEPTH: u32 = 32;
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Bvh {
     nodes: Vec<Node>,
     /// Primitive indices, leaves refer to ranges of this.
     order: Vec<u32>,
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct Node {
     bounds: Bounds,
     /// Leaf: `count > 0`, primitives `order[first..first + count]`. Interior: `count == 0`,
@@ -60,6 +60,29 @@ impl Bvh {
         let mut bvh = Bvh::default();
         bvh.flatten(tree);
         bvh
+    }
+
+    /// Checks the indices a loaded BVH (`scene_file`) traverses with: every child and
+    /// primitive range in bounds, children after their parent (so traversal ends), and
+    /// every primitive index below `objects`.
+    pub fn validate(&self, objects: usize) -> Result<(), String> {
+        let (n, order) = (self.nodes.len(), self.order.len());
+        for (at, node) in self.nodes.iter().enumerate() {
+            let ok = if node.count > 0 {
+                (node.first as usize)
+                    .checked_add(node.count as usize)
+                    .is_some_and(|end| end <= order)
+            } else {
+                at + 1 < n && (node.first as usize) > at && (node.first as usize) < n
+            };
+            if !ok || node.axis > 2 {
+                return Err(format!("BVH node {at} is out of range"));
+            }
+        }
+        match self.order.iter().find(|&&i| i as usize >= objects) {
+            Some(i) => Err(format!("BVH refers to surface {i} of {objects}")),
+            None => Ok(()),
+        }
     }
 
     fn flatten(&mut self, b: Build) -> usize {

@@ -10,7 +10,9 @@ pub mod math;
 pub mod picture;
 pub mod ray;
 pub mod scene;
+pub mod scene_file;
 pub mod shapes;
+pub mod tonemap;
 pub mod small_sources;
 pub mod virtuals;
 

@@ -56,7 +56,7 @@ pub fn perpendicular(v: Vec3) -> Option<Vec3> {
 }
 
 /// Axis-aligned bounding box.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Bounds {
     pub min: Vec3,
     pub max: Vec3,

@@ -220,7 +220,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 /// Runs `f` in a rayon pool whose threads have room for long ray chains (mirrors,
 /// stacks of pass-through surfaces: up to `MAX_CHAIN` nested evaluations).
 pub(super) fn with_deep_stacks(f: impl FnOnce() -> ExitCode + Send) -> ExitCode {
+    with_threads(0, f)
+}
+
+/// `with_deep_stacks` on `threads` threads (0: rayon's default, all cores unless
+/// `RAYON_NUM_THREADS` says otherwise).
+pub(super) fn with_threads(threads: usize, f: impl FnOnce() -> ExitCode + Send) -> ExitCode {
     match rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
         .stack_size(256 << 20)
         .build()
     {
@@ -293,7 +300,17 @@ pub(super) fn render_option<'a>(
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    super::trace::with_deep_stacks(|| run_parsed(args))
+    with_threads(thread_count(args), || run_parsed(args))
+}
+
+/// rtrace's `-n N` (processes): here, the number of threads (the last `-n` given; a
+/// bad value is reported by the option parser).
+pub(super) fn thread_count(args: &[String]) -> usize {
+    let at = args.iter().rposition(|a| a == "-n");
+    at.and_then(|i| args.get(i + 1))
+        .and_then(|v| v.parse::<f64>().ok())
+        .filter(|n| (1.0..=1024.0).contains(n))
+        .map_or(0, |n| n as usize)
 }
 
 fn run_parsed(args: &[String]) -> ExitCode {
@@ -384,12 +401,15 @@ fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args) -> RayState
 
 /// Reads the scene files as one scene, reports their diagnostics on stderr (warnings
 /// only if asked), and compiles it; scenes with errors, or with things radc cannot
-/// render, are refused.
+/// render, are refused. A compiled scene (`radc build`) is loaded instead.
 pub(super) fn load_scene(
     paths: &[PathBuf],
     command: &str,
     warnings: bool,
 ) -> Result<Scene, ExitCode> {
+    if let Some(compiled) = super::build::load_compiled(paths, command) {
+        return compiled;
+    }
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let ir = super::check::check_scene(
@@ -413,11 +433,11 @@ pub(super) fn load_scene(
     }
     report::eprint(&diags, &sources);
     if diags.iter().any(|d| d.severity == Severity::Error) {
-        eprintln!("radc {command}: the scene has errors; nothing rendered");
+        errln!("radc {command}: the scene has errors; nothing rendered");
         return Err(ExitCode::from(1));
     }
     if unexpanded > 0 {
-        eprintln!(
+        errln!(
             "radc {command}: the scene has {unexpanded} '!' command line(s) radc does not run, so \
              it would render without what they make; run them and include their output"
         );
@@ -433,7 +453,7 @@ pub(super) fn load_scene(
                     Some(format!("{}:{line}:{col}: ", s.name))
                 })
                 .unwrap_or_default();
-            eprintln!("radc {command}: {place}cannot render {p}");
+            errln!("radc {command}: {place}cannot render {p}");
         }
         ExitCode::from(1)
     })
