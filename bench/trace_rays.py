@@ -5,14 +5,14 @@ agree.
 
 Scenes are generated into a temporary folder with Radiance's own generators:
 
-  room     genbox room (inward faces), 48 xform-arrayed desks (genbox), 20 plastic
-           spheres, 4 spherical lamps
+  room     genbox room (inward faces), 48 xform-arrayed desks (genbox), 20 polished
+           metal spheres (roughness 0: rtrace samples rough highlights at random), 4 lamps
   spheres  20,000 random plastic spheres over a ground polygon, lit by a distant sun
   terrain  gensurf mat t 't*100' 's*100' 'sin(t*20)*cos(s*17)*3+5' 400 400
            (319,996 triangles), lit by a distant sun
 
-Each scene is compiled once, by `oconv` for rtrace and by `radc build` for radc (not
-timed here; see BENCHMARKS.md for build and load times). The rays (a fixed seed, the
+Each scene is compiled by `oconv` for rtrace and by `radc build` for radc; those build
+times are reported too. The rays (a fixed seed, the
 same text file for both programs) are ASCII `ox oy oz dx dy dz` lines on stdin; both
 print `-h -ov` in ASCII. Settings: `-ab 0 -dj 0 -dt 0 -dr 0 -u-` (deterministic: no
 ambient bounces, jitter, probabilistic shadow tests or random orientation).
@@ -78,7 +78,7 @@ def scene_room(env, d, rng):
     text = (
         "void plastic wall 0 0 5 .6 .6 .55 0 0\n"
         "void plastic wood 0 0 5 .4 .25 .1 .02 .05\n"
-        "void metal steel 0 0 5 .7 .7 .75 .9 .05\n"
+        "void metal steel 0 0 5 .7 .7 .75 .9 0\n"
         "void light lamp 0 0 3 50 50 45\n"
     )
     text += run_text(["genbox", "wall", "room", "12", "16", "3", "-i"], env, d)
@@ -149,6 +149,12 @@ def best_time(cmd, stdin_path, env, cwd, runs):
     return best, p.stdout
 
 
+def empty_input(d):
+    p = Path(d) / "empty.rays"
+    p.write_text("")
+    return p
+
+
 def numbers(out):
     return [float(w) for w in out.split()]
 
@@ -189,13 +195,13 @@ def main():
                 for _ in range(args.rays):
                     (ox, oy, oz), (dx, dy, dz) = ray()
                     f.write(f"{ox:.6f} {oy:.6f} {oz:.6f} {dx:.8f} {dy:.8f} {dz:.8f}\n")
-            empty = Path(d) / "empty.rays"
-            empty.write_text("")
+            empty = empty_input(d)
             oct_ = Path(d) / f"{name}.oct"
-            with open(oct_, "wb") as f:
-                subprocess.run(["oconv", rad.name], stdout=f, env=env, cwd=d, check=True)
             rsc = Path(d) / f"{name}.rsc"
-            subprocess.run([radc, "build", "-o", rsc.name, rad.name], env=env, cwd=d, check=True)
+            builds = {}
+            for prog, cmd in (("oconv", ["sh", "-c", f"oconv {rad.name} > {oct_.name}"]),
+                              ("radc", [radc, "build", "-o", rsc.name, rad.name])):
+                builds[prog], _ = best_time(cmd, empty_input(d), env, d, args.runs)
             programs = {
                 "rtrace": lambda n: ["rtrace", "-h", "-ov", "-n", str(n)] + SETTINGS + [oct_.name],
                 "radc": lambda n: [radc, "trace", "-h", "-ov", "-n", str(n)] + SETTINGS + [rsc.name],
@@ -211,7 +217,7 @@ def main():
                 [radc, "trace", "-h", "-ov", "-n", "1"] + SETTINGS + [rad.name], empty, env, d,
                 args.runs)
             agree = agreement(result[("rtrace", 1)][2], result[("radc", 1)][2])
-            rows.append((name, result, rad_start, agree))
+            rows.append((name, result, rad_start, agree, builds))
             print(f"{name}: done ({agree})", flush=True)
     finally:
         if not args.keep:
@@ -219,15 +225,17 @@ def main():
     print()
     print("| scene | threads | rtrace rays/s | radc rays/s | radc / rtrace |")
     print("|---|---:|---:|---:|---:|")
-    for name, r, _, _ in rows:
+    for name, r, _, _, _ in rows:
         for n in (1, cores):
             a, b = r[("rtrace", n)][0], r[("radc", n)][0]
             print(f"| {name} | {n} | {a:,.0f} | {b:,.0f} | {b / a:.2f}x |")
     print()
-    print("| scene | start-up rtrace (octree) | radc (.rsc) | radc (.rad) | results |")
-    print("|---|---:|---:|---:|---|")
-    for name, r, rad_start, agree in rows:
-        print(f"| {name} | {r[('rtrace', 'start')] * 1e3:.0f} ms | "
+    print("| scene | oconv | radc build | start-up: rtrace (octree) | radc (.rsc) "
+          "| radc (.rad) | results |")
+    print("|---|---:|---:|---:|---:|---:|---|")
+    for name, r, rad_start, agree, b in rows:
+        print(f"| {name} | {b['oconv'] * 1e3:.0f} ms | {b['radc'] * 1e3:.0f} ms "
+              f"| {r[('rtrace', 'start')] * 1e3:.0f} ms | "
               f"{r[('radc', 'start')] * 1e3:.0f} ms | {rad_start * 1e3:.0f} ms | {agree} |")
 
 
