@@ -19,7 +19,9 @@ ambient bounces, jitter, probabilistic shadow tests or random orientation).
 
 Rays per second = rays / (time with the rays - time with no rays): the start-up (loading
 the octree or the compiled scene) is measured separately, by the same command on empty
-input, and reported on its own. Times are the best of --runs runs (wall clock).
+input, and reported on its own. Times are the best of --runs runs: CPU time (user +
+system, from wait4) for one thread, which load from other programs barely changes, and
+wall time for all cores.
 Single-threaded: `rtrace -n 1` and `radc trace -n 1`; all cores: `-n` with
 os.cpu_count() for both (rtrace forks that many processes, radc runs that many threads).
 
@@ -136,17 +138,25 @@ def unit(x, y, z):
     return (x / n, y / n, z / n)
 
 
-def best_time(cmd, stdin_path, env, cwd, runs):
+def best_time(cmd, stdin_path, env, cwd, runs, cpu=False):
+    """Best wall time of `runs` runs, or with `cpu` the best CPU time (user + system of
+    the program and the processes it waited for): on a shared machine the steadier
+    figure for one thread."""
     best = math.inf
     for _ in range(runs):
-        with open(stdin_path, "rb") as inp:
+        with open(stdin_path, "rb") as inp, tempfile.TemporaryFile() as out, \
+                tempfile.TemporaryFile() as err:
             t0 = time.perf_counter()
-            p = subprocess.run(cmd, stdin=inp, env=env, cwd=cwd, capture_output=True)
+            p = subprocess.Popen(cmd, stdin=inp, stdout=out, stderr=err, env=env, cwd=cwd)
+            _, status, usage = os.wait4(p.pid, 0)
             t = time.perf_counter() - t0
-        if p.returncode != 0:
-            sys.exit(f"{' '.join(cmd)} failed:\n{p.stderr.decode(errors='replace')}")
-        best = min(best, t)
-    return best, p.stdout
+            out.seek(0)
+            stdout = out.read()
+            if os.waitstatus_to_exitcode(status) != 0:
+                err.seek(0)
+                sys.exit(f"{' '.join(cmd)} failed:\n{err.read().decode(errors='replace')}")
+        best = min(best, usage.ru_utime + usage.ru_stime if cpu else t)
+    return best, stdout
 
 
 def empty_input(d):
@@ -209,9 +219,12 @@ def main():
             result = {}
             for prog, cmd in programs.items():
                 start, _ = best_time(cmd(1), empty, env, d, args.runs)
+                start_cpu, _ = best_time(cmd(1), empty, env, d, args.runs, cpu=True)
                 for n in (1, cores):
-                    t, out = best_time(cmd(n), rays, env, d, args.runs)
-                    result[(prog, n)] = (args.rays / max(t - start, 1e-9), t, out)
+                    # One thread: CPU time; all cores: wall time.
+                    t, out = best_time(cmd(n), rays, env, d, args.runs, cpu=n == 1)
+                    t0 = start_cpu if n == 1 else start
+                    result[(prog, n)] = (args.rays / max(t - t0, 1e-9), t, out)
                 result[(prog, "start")] = start
             rad_start, _ = best_time(
                 [radc, "trace", "-h", "-ov", "-n", "1"] + SETTINGS + [rad.name], empty, env, d,

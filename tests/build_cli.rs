@@ -84,7 +84,11 @@ fn compiled_scenes_trace_exactly_like_their_text() {
         from_text.extend(scenes.iter().map(|p| s(p)));
         from_rsc.push(s(&rsc));
         let (a, b) = (radc(&from_text, &rays), radc(&from_rsc, &rays));
-        assert!(a.status.success() && b.status.success(), "{id}: {}", stderr(&b));
+        assert!(
+            a.status.success() && b.status.success(),
+            "{id}: {}",
+            stderr(&b)
+        );
         assert_eq!(
             String::from_utf8_lossy(&a.stdout),
             String::from_utf8_lossy(&b.stdout),
@@ -101,7 +105,9 @@ fn render_from_a_compiled_scene_is_the_same_picture() {
     let rad = lamp_scene(dir.path());
     let rsc = dir.path().join("lamp.rsc");
     build(std::slice::from_ref(&rad), &rsc);
-    let view = ["render", "-vp", "0", "-6", "1", "-vd", "0", "1", "0", "-x", "24", "-y", "24"];
+    let view = [
+        "render", "-vp", "0", "-6", "1", "-vd", "0", "1", "0", "-x", "24", "-y", "24",
+    ];
     let picture = |scene: &Path| {
         let mut args = view.to_vec();
         args.push(s(scene));
@@ -132,10 +138,16 @@ fn bad_compiled_scenes_are_refused_clearly() {
     let mut version = good.clone();
     version[8] ^= 0x7f;
     let octree = b"#?RADIANCE\noconv lamp.rad\nFORMAT=Radiance_octree\n\n\x03\x00\x01\x02".to_vec();
-    let random: Vec<u8> = (0u32..5000).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+    let random: Vec<u8> = (0u32..5000)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+        .collect();
     let cases: [(&str, Vec<u8>, &str); 6] = [
         ("corrupt.rsc", corrupt, "checksum"),
-        ("truncated.rsc", good[..good.len() / 2].to_vec(), "truncated"),
+        (
+            "truncated.rsc",
+            good[..good.len() / 2].to_vec(),
+            "truncated",
+        ),
         ("version.rsc", version, "format"),
         ("random.rsc", random, "not a radc compiled scene"),
         ("empty.rsc", Vec::new(), "empty"),
@@ -148,7 +160,10 @@ fn bad_compiled_scenes_are_refused_clearly() {
             let o = radc(&[command, s(&path)], b"0 0 3 0 0 -1\n");
             let err = stderr(&o);
             assert_eq!(o.status.code(), Some(1), "{command} {name}: {err}");
-            assert!(err.contains(name), "{command} {name}: names the file: {err}");
+            assert!(
+                err.contains(name),
+                "{command} {name}: names the file: {err}"
+            );
             assert!(err.contains(says), "{command} {name}: says '{says}': {err}");
             assert!(!err.contains("panicked"), "{command} {name}: {err}");
             assert!(o.stdout.is_empty(), "{command} {name}: no output");
@@ -164,30 +179,60 @@ fn bad_compiled_scenes_are_refused_clearly() {
 fn build_refuses_scenes_with_errors_and_accepts_oconv_options() {
     let dir = tempfile::tempdir().expect("temp dir");
     let bad = dir.path().join("bad.rad");
-    std::fs::write(&bad, "void plastic red 0 0 2 1 0\nred sphere s 0 0 4 0 0 0 1\n")
-        .expect("write");
+    std::fs::write(
+        &bad,
+        "void plastic red 0 0 2 1 0\nred sphere s 0 0 4 0 0 0 1\n",
+    )
+    .expect("write");
     let out = dir.path().join("bad.rsc");
     let o = radc(&["build", "-o", s(&out), s(&bad)], b"");
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("bad.rad:1"), "diagnostics shown: {}", stderr(&o));
+    assert!(
+        stderr(&o).contains("bad.rad:1"),
+        "diagnostics shown: {}",
+        stderr(&o)
+    );
     assert!(!out.exists(), "no file written for a scene with errors");
 
     let rad = lamp_scene(dir.path());
     let out = dir.path().join("lamp.rsc");
     let o = radc(
-        &["build", "-f", "-w", "-n", "6", "-r", "1024", "-b", "-9", "-9", "-9", "18", "-o"],
-        b"",
-    );
-    assert_eq!(o.status.code(), Some(2), "-o without a file is a usage error");
-    let o = radc(
         &[
             "build", "-f", "-w", "-n", "6", "-r", "1024", "-b", "-9", "-9", "-9", "18", "-o",
-            s(&out), s(&rad),
+        ],
+        b"",
+    );
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "-o without a file is a usage error"
+    );
+    let o = radc(
+        &[
+            "build",
+            "-f",
+            "-w",
+            "-n",
+            "6",
+            "-r",
+            "1024",
+            "-b",
+            "-9",
+            "-9",
+            "-9",
+            "18",
+            "-o",
+            s(&out),
+            s(&rad),
         ],
         b"",
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(std::fs::read(&out).expect("written").starts_with(b"RADCSCN"));
+    assert!(
+        std::fs::read(&out)
+            .expect("written")
+            .starts_with(b"RADCSCN")
+    );
     let o = radc(&["build", "-i", "old.oct", "-o", s(&out), s(&rad)], b"");
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("-i"), "{}", stderr(&o));
@@ -200,18 +245,41 @@ fn render_writes_png_and_picture_together() {
     let (png, hdr) = (dir.path().join("x.png"), dir.path().join("x.hdr"));
     let o = radc(
         &[
-            "render", "-vp", "0", "-6", "1", "-vd", "0", "1", "0", "-x", "40", "-y", "30", "-o",
-            s(&png), "-o", s(&hdr), s(&rad),
+            "render",
+            "-vp",
+            "0",
+            "-6",
+            "1",
+            "-vd",
+            "0",
+            "1",
+            "0",
+            "-x",
+            "40",
+            "-y",
+            "30",
+            "-o",
+            s(&png),
+            "-o",
+            s(&hdr),
+            s(&rad),
         ],
         b"",
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(o.stdout.is_empty(), "with -o nothing goes to stdout");
-    assert!(stderr(&o).is_empty(), "no progress bar when stderr is not a terminal");
+    assert!(
+        stderr(&o).is_empty(),
+        "no progress bar when stderr is not a terminal"
+    );
     let bytes = std::fs::read(&png).expect("png written");
     assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"));
     // IHDR: width and height, big-endian, after the signature and the chunk header.
-    assert_eq!(&bytes[16..24], &[0, 0, 0, 30, 0, 0, 0, 30], "30 by 30 (square view)");
+    assert_eq!(
+        &bytes[16..24],
+        &[0, 0, 0, 30, 0, 0, 0, 30],
+        "30 by 30 (square view)"
+    );
     assert!(std::fs::read(&hdr).expect("hdr").starts_with(b"#?RADIANCE"));
 }
 
@@ -219,14 +287,20 @@ fn render_writes_png_and_picture_together() {
 fn render_error_file_takes_the_messages() {
     let dir = tempfile::tempdir().expect("temp dir");
     let bad = dir.path().join("bad.rad");
-    std::fs::write(&bad, "void plastic red 0 0 2 1 0\nred sphere s 0 0 4 0 0 0 1\n")
-        .expect("write");
+    std::fs::write(
+        &bad,
+        "void plastic red 0 0 2 1 0\nred sphere s 0 0 4 0 0 0 1\n",
+    )
+    .expect("write");
     let log = dir.path().join("errors.txt");
     let o = radc(&["render", "-e", s(&log), s(&bad)], b"");
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).is_empty(), "stderr stays quiet: {}", stderr(&o));
     let text = std::fs::read_to_string(&log).expect("error file");
-    assert!(text.contains("bad.rad:1") && text.contains("nothing rendered"), "{text}");
+    assert!(
+        text.contains("bad.rad:1") && text.contains("nothing rendered"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -250,7 +324,10 @@ fn render_refuses_bad_sizes_and_views() {
         let o = radc(&all, b"");
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert!(!err.contains("panicked") && o.stdout.is_empty(), "{args:?}: {err}");
+        assert!(
+            !err.contains("panicked") && o.stdout.is_empty(),
+            "{args:?}: {err}"
+        );
     }
 }
 
@@ -259,12 +336,43 @@ fn render_warns_about_a_view_inside_geometry() {
     let dir = tempfile::tempdir().expect("temp dir");
     let rad = lamp_scene(dir.path());
     // The view point is the centre of the opaque ball.
-    let o = radc(&["render", "-vp", "0", "0", "0", "-x", "16", "-y", "16", s(&rad)], b"");
+    let o = radc(
+        &[
+            "render",
+            "-vp",
+            "0",
+            "0",
+            "0",
+            "-x",
+            "16",
+            "-y",
+            "16",
+            s(&rad),
+        ],
+        b"",
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
-    assert!(err.contains("inside geometry") && err.contains("'ball'"), "{err}");
+    assert!(
+        err.contains("inside geometry") && err.contains("'ball'"),
+        "{err}"
+    );
     assert!(err.contains("the picture is black"), "{err}");
     // Outside it: no warning.
-    let o = radc(&["render", "-vp", "0", "-6", "1", "-x", "16", "-y", "16", s(&rad)], b"");
+    let o = radc(
+        &[
+            "render",
+            "-vp",
+            "0",
+            "-6",
+            "1",
+            "-x",
+            "16",
+            "-y",
+            "16",
+            s(&rad),
+        ],
+        b"",
+    );
     assert!(stderr(&o).is_empty(), "{}", stderr(&o));
 }

@@ -12,8 +12,8 @@ pub mod ray;
 pub mod scene;
 pub mod scene_file;
 pub mod shapes;
-pub mod tonemap;
 pub mod small_sources;
+pub mod tonemap;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};

@@ -41,10 +41,7 @@ pub enum SceneFileError {
     /// The payload's checksum does not match the header's.
     Corrupt { expected: u32, found: u32 },
     /// Written by another format version or another radc version.
-    Version {
-        format: u32,
-        radc: String,
-    },
+    Version { format: u32, radc: String },
     /// The checksum matched but the payload does not decode (or has bytes left over):
     /// written by an incompatible build with the same version stamp.
     Undecodable { why: String },
@@ -95,9 +92,8 @@ pub fn looks_compiled(head: &[u8]) -> bool {
 
 /// The whole file for `scene`: header and payload.
 pub fn encode(scene: &Scene) -> Result<Vec<u8>, SceneFileError> {
-    let payload = postcard::to_stdvec(scene).map_err(|e| SceneFileError::Encode {
-        why: e.to_string(),
-    })?;
+    let payload =
+        postcard::to_stdvec(scene).map_err(|e| SceneFileError::Encode { why: e.to_string() })?;
     let version = RADC_VERSION.as_bytes();
     let version_len = u8::try_from(version.len()).map_err(|_| SceneFileError::Encode {
         why: "version string too long".into(),
@@ -127,7 +123,10 @@ pub fn decode(bytes: &[u8]) -> Result<Scene, SceneFileError> {
             what: describe_foreign(bytes),
         });
     }
-    let mut r = Reader { bytes, at: MAGIC.len() };
+    let mut r = Reader {
+        bytes,
+        at: MAGIC.len(),
+    };
     let format = r.u32()?;
     let version_len = r.take(1)?[0] as usize;
     let radc = String::from_utf8_lossy(r.take(version_len)?).into_owned();
@@ -155,10 +154,8 @@ pub fn decode(bytes: &[u8]) -> Result<Scene, SceneFileError> {
             found,
         });
     }
-    let (scene, left) =
-        postcard::take_from_bytes::<Scene>(rest).map_err(|e| SceneFileError::Undecodable {
-            why: e.to_string(),
-        })?;
+    let (scene, left) = postcard::take_from_bytes::<Scene>(rest)
+        .map_err(|e| SceneFileError::Undecodable { why: e.to_string() })?;
     if !left.is_empty() {
         return Err(SceneFileError::Undecodable {
             why: format!("{} bytes left after the scene", left.len()),
@@ -321,7 +318,9 @@ mod tests {
         let mut bytes = encode(&scene()).expect("encodes");
         bytes[MAGIC.len()] = bytes[MAGIC.len()].wrapping_add(1);
         let e = decode(&bytes).expect_err("another format");
-        assert!(matches!(e, SceneFileError::Version { format, .. } if format == FORMAT_VERSION + 1));
+        assert!(
+            matches!(e, SceneFileError::Version { format, .. } if format == FORMAT_VERSION + 1)
+        );
         let mut bytes = encode(&scene()).expect("encodes");
         let v = MAGIC.len() + 5;
         bytes[v] = b'9';

@@ -46,9 +46,11 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 }
             }
             "-i" => {
-                return Err("-i (adding to an existing octree) is not supported: give all the \
+                return Err(
+                    "-i (adding to an existing octree) is not supported: give all the \
                             scene files to one radc build"
-                    .into());
+                        .into(),
+                );
             }
             "-help" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),

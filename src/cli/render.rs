@@ -7,8 +7,8 @@
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use radc_renderer::camera::{Camera, View};
 use radc_renderer::math::Color;
@@ -132,7 +132,10 @@ fn run_parsed(args: &[String]) -> ExitCode {
     if let Some(path) = &a.errors
         && let Err(e) = super::error_file::redirect(path)
     {
-        eprintln!("radc render: cannot open error file {}: {e}", path.display());
+        eprintln!(
+            "radc render: cannot open error file {}: {e}",
+            path.display()
+        );
         return ExitCode::from(USAGE_ERROR);
     }
     let camera = match a.view.camera() {
@@ -214,8 +217,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
     if a.outputs.is_empty() {
         let stdout = std::io::stdout();
         let mut out = std::io::BufWriter::new(stdout.lock());
-        if let Err(e) = picture::write(&mut out, &header, w, h, &pixels).and_then(|_| out.flush())
-        {
+        if let Err(e) = picture::write(&mut out, &header, w, h, &pixels).and_then(|_| out.flush()) {
             errln!("radc render: cannot write the picture: {e}");
             return ExitCode::from(1);
         }

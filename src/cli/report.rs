@@ -62,7 +62,13 @@ pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
 /// Diagnostics to stderr, for commands whose stdout carries data (`radc trace`).
 pub fn eprint(diags: &[Diagnostic], sources: &Sources) {
     if super::error_file::with_file(|f| {
-        print_to(diags, sources, Format::Human, false, &mut std::io::BufWriter::new(f))
+        print_to(
+            diags,
+            sources,
+            Format::Human,
+            false,
+            &mut std::io::BufWriter::new(f),
+        )
     }) {
         return;
     }

@@ -675,7 +675,11 @@ fn c_exp(x: f64) -> String {
 /// The digits are Rust's exactly rounded `{:.6e}`; only the exponent is rewritten.
 fn c_exp_into(x: f64, buf: &mut [u8; 40]) -> usize {
     let special: &[u8] = if x.is_nan() {
-        if x.is_sign_negative() { b"-nan" } else { b"nan" }
+        if x.is_sign_negative() {
+            b"-nan"
+        } else {
+            b"nan"
+        }
     } else if x.is_infinite() {
         if x < 0.0 { b"-inf" } else { b"inf" }
     } else {
