@@ -2,22 +2,23 @@
 //! clamp, and the sRGB transfer curve. Deliberately simple and predictable (no local
 //! adaptation as `pcond` does): the Radiance picture keeps the real values.
 //!
-//! Exposure: unless given, chosen so the picture's mean brightness (`pbright`, the
-//! luminance weights of Radiance's primaries) maps to 0.5, the idea of pfilt's
-//! automatic exposure. Each channel is multiplied by it, clamped to [0, 1] and encoded
+//! Exposure: chosen so the mean brightness (`pbright`, the luminance weights of
+//! Radiance's primaries) of the picture's non-black pixels maps to 0.5, the idea of
+//! pfilt's automatic exposure; black pixels (a sky that is not modelled, the outside of
+//! a fisheye's circle) are left out so they do not overexpose the rest. Each channel is multiplied by it, clamped to [0, 1] and encoded
 //! with the sRGB curve (IEC 61966-2-1: linear below 0.0031308, else `1.055 v^(1/2.4) -
 //! 0.055`), then rounded to 8 bits. Radiance's primaries are close enough to sRGB's that
 //! no colour matrix is applied.
 
 use crate::math::{Color, brightness};
 
-/// The exposure that maps the mean brightness of `pixels` to 0.5 (1 for a black or
-/// empty picture). Non-finite pixels are left out.
+/// The exposure that maps the mean brightness of the non-black `pixels` to 0.5 (1 for
+/// a black or empty picture). Non-finite pixels are left out.
 pub fn auto_exposure(pixels: &[Color]) -> f64 {
     let (sum, n) = pixels
         .iter()
         .map(|c| brightness(c.max(Color::ZERO)))
-        .filter(|b| b.is_finite())
+        .filter(|b| b.is_finite() && *b > 0.0)
         .fold((0.0, 0usize), |(s, n), b| (s + b, n + 1));
     let mean = if n > 0 { sum / n as f64 } else { 0.0 };
     if mean > 1e-30 { 0.5 / mean } else { 1.0 }
@@ -65,11 +66,11 @@ mod tests {
 
     #[test]
     fn auto_exposure_maps_the_mean_to_half() {
-        let px = vec![Color::splat(2.0), Color::splat(6.0)];
+        let px = vec![Color::splat(2.0), Color::ZERO, Color::splat(6.0)];
         let e = auto_exposure(&px);
         assert!((e - 0.125).abs() < 1e-9, "{e}");
         assert_eq!(auto_exposure(&[Color::ZERO]), 1.0);
         assert_eq!(auto_exposure(&[]), 1.0);
-        assert_eq!(to_srgb8(&px, e).len(), 6);
+        assert_eq!(to_srgb8(&px, e).len(), 9);
     }
 }

@@ -267,7 +267,7 @@ fn show_progress(done: &AtomicUsize, rows: usize) {
     loop {
         let n = done.load(Ordering::Relaxed);
         if n == usize::MAX {
-            let _ = write!(err, "\r{:40}\r", "");
+            let _ = write!(err, "\r{:60}\r", "");
             return;
         }
         let pct = n * 100 / rows.max(1);
