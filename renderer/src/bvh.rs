@@ -12,14 +12,14 @@ const PARALLEL_THRESHOLD: usize = 4096;
 /// (and the build's recursion bounded) whatever the distribution of primitives.
 const SAH_DEPTH: u32 = 32;
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Bvh {
     nodes: Vec<Node>,
     /// Primitive indices, leaves refer to ranges of this.
     order: Vec<u32>,
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 struct Node {
     bounds: Bounds,
     /// Leaf: `count > 0`, primitives `order[first..first + count]`. Interior: `count == 0`,
@@ -62,6 +62,29 @@ impl Bvh {
         bvh
     }
 
+    /// Checks the indices a loaded BVH (`scene_file`) traverses with: every child and
+    /// primitive range in bounds, children after their parent (so traversal ends), and
+    /// every primitive index below `objects`.
+    pub fn validate(&self, objects: usize) -> Result<(), String> {
+        let (n, order) = (self.nodes.len(), self.order.len());
+        for (at, node) in self.nodes.iter().enumerate() {
+            let ok = if node.count > 0 {
+                (node.first as usize)
+                    .checked_add(node.count as usize)
+                    .is_some_and(|end| end <= order)
+            } else {
+                at + 1 < n && (node.first as usize) > at && (node.first as usize) < n
+            };
+            if !ok || node.axis > 2 {
+                return Err(format!("BVH node {at} is out of range"));
+            }
+        }
+        match self.order.iter().find(|&&i| i as usize >= objects) {
+            Some(i) => Err(format!("BVH refers to surface {i} of {objects}")),
+            None => Ok(()),
+        }
+    }
+
     fn flatten(&mut self, b: Build) -> usize {
         let at = self.nodes.len();
         match b {
@@ -89,22 +112,32 @@ impl Bvh {
         at
     }
 
-    /// Visits every primitive whose box the ray enters before `limit`, near subtrees
+    /// Visits every primitive whose box the ray enters before `limit`, nearer boxes
     /// first. `visit` tests one primitive and returns the new limit (which may only
     /// shrink).
+    ///
+    /// Both children's boxes are tested at their parent, and only those the ray enters
+    /// are pushed, the farther first, with their entry distance: a popped node whose
+    /// entry lies beyond the (meanwhile shrunk) limit is skipped without touching it.
+    /// This visits the same primitives as testing each box when it is popped.
     pub fn traverse(&self, ray: &Ray, mut limit: f64, mut visit: impl FnMut(u32) -> f64) {
-        if self.nodes.is_empty() {
+        let Some(root) = self.nodes.first() else {
             return;
-        }
+        };
         let inv = Vec3::ONE / ray.dir;
-        let mut stack = [0u32; 128];
+        let Some(t_root) = root.bounds.entry(ray.org, inv, limit) else {
+            return;
+        };
+        let mut stack = [(0u32, 0f64); 128];
+        stack[0] = (0, t_root);
         let mut sp = 1usize;
         while sp > 0 {
             sp -= 1;
-            let node = self.nodes[stack[sp] as usize];
-            if !node.bounds.hit(ray.org, inv, limit) {
+            let (at, entry) = stack[sp];
+            if entry > limit {
                 continue;
             }
+            let node = &self.nodes[at as usize];
             if node.count > 0 {
                 let range = node.first as usize..(node.first + node.count) as usize;
                 for &i in &self.order[range] {
@@ -112,14 +145,9 @@ impl Bvh {
                 }
                 continue;
             }
-            let left = stack[sp] + 1;
-            let right = node.first;
-            // Push the far child first so the near one is visited first.
-            let (near, far) = if ray.dir[node.axis as usize] < 0.0 {
-                (right, left)
-            } else {
-                (left, right)
-            };
+            let (left, right) = (at + 1, node.first);
+            let tl = self.nodes[left as usize].bounds.entry(ray.org, inv, limit);
+            let tr = self.nodes[right as usize].bounds.entry(ray.org, inv, limit);
             if sp + 2 > stack.len() {
                 // Deeper than any balanced build of this size reaches; visit in order.
                 for i in 0..self.order.len() {
@@ -127,9 +155,27 @@ impl Bvh {
                 }
                 return;
             }
-            stack[sp] = far;
-            stack[sp + 1] = near;
-            sp += 2;
+            match (tl, tr) {
+                (Some(l), Some(r)) => {
+                    let (near, far) = if r < l {
+                        ((right, r), (left, l))
+                    } else {
+                        ((left, l), (right, r))
+                    };
+                    stack[sp] = far;
+                    stack[sp + 1] = near;
+                    sp += 2;
+                }
+                (Some(l), None) => {
+                    stack[sp] = (left, l);
+                    sp += 1;
+                }
+                (None, Some(r)) => {
+                    stack[sp] = (right, r);
+                    sp += 1;
+                }
+                (None, None) => {}
+            }
         }
     }
 }

@@ -10,8 +10,10 @@ pub mod math;
 pub mod picture;
 pub mod ray;
 pub mod scene;
+pub mod scene_file;
 pub mod shapes;
 pub mod small_sources;
+pub mod tonemap;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};

@@ -11,7 +11,7 @@ use crate::math::{FHUGE, FTINY, Vec3, normalize, perpendicular};
 const MAXSPART: i32 = 64;
 
 /// Where a source is.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum SourceShape {
     /// A sphere: sampled at its centre, solid angle `pi r^2 / d^2`.
     Sphere { center: Vec3, radius: f64 },
@@ -39,7 +39,7 @@ pub enum SourceShape {
 }
 
 /// One direct source.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Source {
     pub shape: SourceShape,
     /// `glow` sources only light points within this distance.
@@ -58,7 +58,7 @@ pub struct Source {
     pub axes: [Vec3; 3],
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum SourceTarget {
     Object(u32),
     Distant(u32),

@@ -56,7 +56,7 @@ pub fn perpendicular(v: Vec3) -> Option<Vec3> {
 }
 
 /// Axis-aligned bounding box.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Bounds {
     pub min: Vec3,
     pub max: Vec3,
@@ -103,18 +103,29 @@ impl Bounds {
         }
     }
 
-    /// Slab test: the parameter range `[t0, t1]` of the ray inside the box, if any
-    /// overlaps `[0, tmax]`.
-    pub fn hit(&self, org: Vec3, inv_dir: Vec3, tmax: f64) -> bool {
+    /// `hit`, with the distance the ray enters the box (0 from inside): a box hit with
+    /// a NaN exit (the ray in a slab plane) enters at minus infinity, so it passes any
+    /// later comparison with a limit, as `hit` would.
+    #[inline]
+    pub fn entry(&self, org: Vec3, inv_dir: Vec3, tmax: f64) -> Option<f64> {
         let a = (self.min - org) * inv_dir;
         let b = (self.max - org) * inv_dir;
         let lo = a.min(b);
         let hi = a.max(b);
-        // NaN (0 * inf) components mean the ray lies in a slab plane: ignore that axis.
         let t0 = lo.x.max(lo.y).max(lo.z).max(0.0);
         let t1 = hi.x.min(hi.y).min(hi.z).min(tmax);
         let t0 = if t0.is_nan() { 0.0 } else { t0 };
-        t0 <= t1 || t1.is_nan()
+        if t1.is_nan() {
+            Some(f64::NEG_INFINITY)
+        } else {
+            (t0 <= t1).then_some(t0)
+        }
+    }
+
+    /// Slab test: the parameter range `[t0, t1]` of the ray inside the box, if any
+    /// overlaps `[0, tmax]`.
+    pub fn hit(&self, org: Vec3, inv_dir: Vec3, tmax: f64) -> bool {
+        self.entry(org, inv_dir, tmax).is_some()
     }
 }
 

@@ -18,9 +18,10 @@ use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 
 /// A surface.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Object {
     /// The primitive this object was compiled from.
+    #[serde(with = "crate::scene_file::prim_id")]
     pub prim: PrimId,
     pub name: String,
     pub shape: Shape,
@@ -33,7 +34,7 @@ pub struct Object {
 }
 
 /// A distant `source`: seen by rays that hit nothing, within its cone.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct DistantObject {
     pub name: String,
     pub direction: Vec3,
@@ -43,7 +44,7 @@ pub struct DistantObject {
     pub material_name: String,
 }
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Scene {
     pub objects: Vec<Object>,
     pub distant: Vec<DistantObject>,
@@ -109,6 +110,29 @@ impl Scene {
         let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
         scene.bvh = Bvh::build(&bounds);
         Ok(scene)
+    }
+
+    /// Checks the indices that tracing relies on: what a compiled scene file
+    /// (`scene_file`) holds was written by this code, but a damaged or foreign payload
+    /// with a matching checksum must give an error, not a panic.
+    pub fn validate(&self) -> Result<(), String> {
+        self.bvh.validate(self.objects.len())?;
+        if let Some(p) = self.objects.iter().find_map(|o| match &o.shape {
+            Shape::Polygon(p) if p.vertices.len() < 3 => Some(&o.name),
+            _ => None,
+        }) {
+            return Err(format!("polygon '{p}' has fewer than 3 vertices"));
+        }
+        for s in &self.sources {
+            let ok = match s.target {
+                SourceTarget::Object(i) => (i as usize) < self.objects.len(),
+                SourceTarget::Distant(i) => (i as usize) < self.distant.len(),
+            };
+            if !ok || s.parent.is_some_and(|p| p >= self.sources.len()) {
+                return Err("a light source refers to a surface out of range".into());
+            }
+        }
+        Ok(())
     }
 
     pub fn material(&self, id: MaterialId) -> Option<&Material> {

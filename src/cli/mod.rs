@@ -1,5 +1,9 @@
 //! Subcommand dispatch. Exit codes: 0 success, 1 the input had errors, 2 usage error.
 
+// First: its `errln!` macro is used by the modules below.
+#[macro_use]
+mod error_file;
+mod build;
 mod calc;
 mod check;
 mod doc;
@@ -36,6 +40,11 @@ const COMMANDS: &[Command] = &[
         name: "calc",
         summary: "evaluate calcomp expressions over records (rcalc-compatible)",
         run: calc::run,
+    },
+    Command {
+        name: "build",
+        summary: "compile scene files into a scene file render and trace load fast, like oconv",
+        run: build::run,
     },
     Command {
         name: "trace",

@@ -1,21 +1,26 @@
 //! `radc render`: rpict for scene files. Writes a Radiance picture (RGBE, new-style RLE)
 //! to stdout or `-o file`, one ray through the centre of each pixel (rpict `-pj 0
 //! -ps 1`), with rpict's view options and the lighting options of `radc trace`.
+//! `-o x.png` writes a tone-mapped PNG (`radc_renderer::tonemap`) instead; `-o` may be
+//! given more than once. `-e file` sends messages to a file, as rpict's does. On a
+//! terminal, stderr shows the progress.
 
-use std::io::Write;
-use std::path::PathBuf;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
-use radc_renderer::camera::View;
+use radc_renderer::camera::{Camera, View};
 use radc_renderer::math::Color;
-use radc_renderer::{Options, Tracer, picture};
+use radc_renderer::{Options, Target, Tracer, picture, tonemap};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
 use super::trace::{load_scene, number, render_option};
 
 const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
-[-vv deg] [-x res] [-y res] [-pa aspect] [-ab 0] [-av r g b] [-o picture.hdr] scene.rad...";
+[-vv deg] [-x res] [-y res] [-pa aspect] [-ab 0] [-av r g b] [-e errfile] [-o picture.hdr|x.png]... \
+scene.rad...|scene.rsc";
 
 struct Args {
     view: View,
@@ -23,7 +28,10 @@ struct Args {
     y: u32,
     pixel_aspect: f64,
     options: Options,
-    output: Option<PathBuf>,
+    /// `-o`: pictures to write, Radiance or (`.png`) tone-mapped; none: stdout.
+    outputs: Vec<PathBuf>,
+    /// `-e`: where messages go.
+    errors: Option<PathBuf>,
     scenes: Vec<PathBuf>,
     warnings: bool,
 }
@@ -55,7 +63,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             relays: 1,
             ..Options::default()
         },
-        output: None,
+        outputs: Vec::new(),
+        errors: None,
         scenes: Vec::new(),
         warnings: true,
     };
@@ -88,7 +97,10 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             "-pj" | "-ps" | "-pt" | "-pm" | "-pd" | "-t" | "-n" => {
                 number(&mut it, arg)?;
             }
-            "-o" => a.output = Some(PathBuf::from(it.next().ok_or("-o needs a file name")?)),
+            "-o" => a
+                .outputs
+                .push(PathBuf::from(it.next().ok_or("-o needs a file name")?)),
+            "-e" => a.errors = Some(PathBuf::from(it.next().ok_or("-e needs a file name")?)),
             s if super::trace::switch(s, "-w", &mut a.warnings) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
             "-help" | "--help" => return Err(String::new()),
@@ -103,7 +115,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    super::trace::with_deep_stacks(|| run_parsed(args))
+    super::trace::with_threads(super::trace::thread_count(args), || run_parsed(args))
 }
 
 fn run_parsed(args: &[String]) -> ExitCode {
@@ -117,10 +129,19 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
+    if let Some(path) = &a.errors
+        && let Err(e) = super::error_file::redirect(path)
+    {
+        eprintln!(
+            "radc render: cannot open error file {}: {e}",
+            path.display()
+        );
+        return ExitCode::from(USAGE_ERROR);
+    }
     let camera = match a.view.camera() {
         Ok(c) => c,
         Err(e) => {
-            eprintln!("radc render: {e}");
+            errln!("radc render: {e}");
             return ExitCode::from(USAGE_ERROR);
         }
     };
@@ -130,53 +151,176 @@ fn run_parsed(args: &[String]) -> ExitCode {
     };
     scene.add_virtual_sources(a.options.relays);
     let (w, h) = camera.fit_resolution(a.x, a.y, a.pixel_aspect);
-    let (w, h) = (w.max(1), h.max(1));
+    if w == 0 || h == 0 {
+        errln!(
+            "radc render: -x {} -y {} with pixel aspect {} leaves a {w} by {h} picture",
+            a.x,
+            a.y,
+            a.pixel_aspect
+        );
+        return ExitCode::from(USAGE_ERROR);
+    }
     // The picture is held in memory: refuse sizes that cannot be.
     if u64::from(w) * u64::from(h) > 1 << 28 {
-        eprintln!("radc render: a {w} by {h} picture is too large");
+        errln!("radc render: a {w} by {h} picture is too large");
         return ExitCode::from(USAGE_ERROR);
     }
     let tracer = Tracer::new(&scene, a.options.clone());
-    // Top row first; pixel centres at ((i + .5) / w, (j + .5) / h) with j counted upward.
-    let pixels: Vec<Color> = (0..h)
-        .into_par_iter()
-        .flat_map_iter(|row| {
-            let j = h - 1 - row;
-            let (camera, tracer) = (&camera, &tracer);
-            (0..w).map(move |i| {
-                let x = (f64::from(i) + 0.5) / f64::from(w);
-                let y = (f64::from(j) + 0.5) / f64::from(h);
-                // Outside a fisheye's circle the picture is black.
-                camera.ray(x, y).map_or(Color::ZERO, |(org, dir, max)| {
-                    tracer.radiance_within(org, dir, max).color
-                })
+    if a.warnings
+        && let Some(warning) = inside_geometry(&tracer, &camera)
+    {
+        errln!("radc render: warning: {warning}");
+    }
+    let done = AtomicUsize::new(0);
+    let progress = std::io::stderr().is_terminal() && !super::error_file::redirected();
+    let pixels = std::thread::scope(|s| {
+        if progress {
+            s.spawn(|| show_progress(&done, h as usize));
+        }
+        // Top row first; pixel centres at ((i + .5) / w, (j + .5) / h) with j counted upward.
+        let pixels: Vec<Color> = (0..h)
+            .into_par_iter()
+            .flat_map_iter(|row| {
+                let j = h - 1 - row;
+                let (camera, tracer) = (&camera, &tracer);
+                let row: Vec<Color> = (0..w)
+                    .map(move |i| {
+                        let x = (f64::from(i) + 0.5) / f64::from(w);
+                        let y = (f64::from(j) + 0.5) / f64::from(h);
+                        // Outside a fisheye's circle the picture is black.
+                        camera.ray(x, y).map_or(Color::ZERO, |(org, dir, max)| {
+                            tracer.radiance_within(org, dir, max).color
+                        })
+                    })
+                    .collect();
+                done.fetch_add(1, Ordering::Relaxed);
+                row
             })
-        })
-        .collect();
+            .collect();
+        // Rows done: tells the progress thread to finish.
+        done.store(usize::MAX, Ordering::Relaxed);
+        pixels
+    });
     let mut pixels = pixels;
     radc_renderer::small_sources::draw(&tracer, &camera, w, h, 1.0, &mut pixels);
+    if a.warnings && pixels.iter().all(|c| *c == Color::ZERO) {
+        errln!(
+            "radc render: warning: the picture is black: no light reaches the view (no light \
+             sources or -av, or the view is enclosed)"
+        );
+    }
     let header = vec![
         format!("radc render {}", args.join(" ")),
         format!("SOFTWARE= radc {}", env!("CARGO_PKG_VERSION")),
         format!("VIEW= {}", a.view.header()),
     ];
-    let written = match &a.output {
-        Some(path) => std::fs::File::create(path).and_then(|f| {
-            let mut out = std::io::BufWriter::new(f);
-            picture::write(&mut out, &header, w, h, &pixels)?;
-            out.flush()
-        }),
-        None => {
-            let stdout = std::io::stdout();
-            let mut out = std::io::BufWriter::new(stdout.lock());
-            picture::write(&mut out, &header, w, h, &pixels).and_then(|_| out.flush())
-        }
-    };
-    match written {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("radc render: cannot write the picture: {e}");
-            ExitCode::from(1)
+    if a.outputs.is_empty() {
+        let stdout = std::io::stdout();
+        let mut out = std::io::BufWriter::new(stdout.lock());
+        if let Err(e) = picture::write(&mut out, &header, w, h, &pixels).and_then(|_| out.flush()) {
+            errln!("radc render: cannot write the picture: {e}");
+            return ExitCode::from(1);
         }
     }
+    for path in &a.outputs {
+        let written = if is_png(path) {
+            write_png(path, w, h, &pixels)
+        } else {
+            std::fs::File::create(path).and_then(|f| {
+                let mut out = std::io::BufWriter::new(f);
+                picture::write(&mut out, &header, w, h, &pixels)?;
+                out.flush()
+            })
+        };
+        if let Err(e) = written {
+            errln!("radc render: cannot write {}: {e}", path.display());
+            return ExitCode::from(1);
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+fn is_png(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+}
+
+/// An 8-bit sRGB PNG, tone-mapped with the automatic exposure (`tonemap`).
+fn write_png(path: &Path, w: u32, h: u32, pixels: &[Color]) -> std::io::Result<()> {
+    let exposure = tonemap::auto_exposure(pixels);
+    let data = tonemap::to_srgb8(pixels, exposure);
+    let file = std::fs::File::create(path)?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+    let png_error = |e: png::EncodingError| std::io::Error::other(e.to_string());
+    let mut writer = encoder.write_header().map_err(png_error)?;
+    writer.write_image_data(&data).map_err(png_error)?;
+    writer.finish().map_err(png_error)
+}
+
+/// A percentage on stderr (a terminal), rewritten in place until `done` says the rows
+/// are finished; then the line is cleared.
+fn show_progress(done: &AtomicUsize, rows: usize) {
+    let mut err = std::io::stderr();
+    loop {
+        let n = done.load(Ordering::Relaxed);
+        if n == usize::MAX {
+            let _ = write!(err, "\r{:60}\r", "");
+            return;
+        }
+        let pct = n * 100 / rows.max(1);
+        let bar = "#".repeat(pct / 5);
+        let _ = write!(err, "\rradc render: [{bar:<20}] {pct:3}% ({n}/{rows} rows)");
+        let _ = err.flush();
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    }
+}
+
+/// Rays sampled over the view to tell whether the view point is inside something.
+const PROBE: u32 = 16;
+
+/// rpict renders whatever the view sees; a view point inside a closed object mostly sees
+/// the backs of its faces, and usually renders black. A warning saying so, if most of a
+/// grid of view rays hit a surface from behind.
+fn inside_geometry(tracer: &Tracer<'_>, camera: &Camera) -> Option<String> {
+    let (mut hits, mut backs) = (0u32, 0u32);
+    let mut nearest: Option<(f64, u32)> = None;
+    for j in 0..PROBE {
+        for i in 0..PROBE {
+            let (x, y) = (
+                (f64::from(i) + 0.5) / f64::from(PROBE),
+                (f64::from(j) + 0.5) / f64::from(PROBE),
+            );
+            let Some((org, dir, max)) = camera.ray(x, y) else {
+                continue;
+            };
+            let r = tracer.radiance_within(org, dir, max);
+            let Target::Object(id) = r.hit else {
+                continue;
+            };
+            hits += 1;
+            if r.surface_normal().dot(r.dir) > 0.0 {
+                backs += 1;
+                if nearest.is_none_or(|(t, _)| r.length < t) {
+                    nearest = Some((r.length, id.0));
+                }
+            }
+        }
+    }
+    let probes = PROBE * PROBE;
+    if hits < probes / 2 || backs * 10 < hits * 9 {
+        return None;
+    }
+    let name = nearest
+        .and_then(|(_, id)| tracer.scene().object(id))
+        .map(|o| format!(" (the nearest is '{}')", o.name))
+        .unwrap_or_default();
+    let p = camera.position();
+    Some(format!(
+        "the view point ({} {} {}) seems to be inside geometry: {backs} of {probes} view rays \
+         hit the back of a surface{name}",
+        p.x, p.y, p.z
+    ))
 }

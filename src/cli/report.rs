@@ -61,6 +61,17 @@ pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
 
 /// Diagnostics to stderr, for commands whose stdout carries data (`radc trace`).
 pub fn eprint(diags: &[Diagnostic], sources: &Sources) {
+    if super::error_file::with_file(|f| {
+        print_to(
+            diags,
+            sources,
+            Format::Human,
+            false,
+            &mut std::io::BufWriter::new(f),
+        )
+    }) {
+        return;
+    }
     let stderr = std::io::stderr();
     let mut out = stderr.lock();
     let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();

@@ -220,7 +220,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 /// Runs `f` in a rayon pool whose threads have room for long ray chains (mirrors,
 /// stacks of pass-through surfaces: up to `MAX_CHAIN` nested evaluations).
 pub(super) fn with_deep_stacks(f: impl FnOnce() -> ExitCode + Send) -> ExitCode {
+    with_threads(0, f)
+}
+
+/// `with_deep_stacks` on `threads` threads (0: rayon's default, all cores unless
+/// `RAYON_NUM_THREADS` says otherwise).
+pub(super) fn with_threads(threads: usize, f: impl FnOnce() -> ExitCode + Send) -> ExitCode {
     match rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
         .stack_size(256 << 20)
         .build()
     {
@@ -293,7 +300,17 @@ pub(super) fn render_option<'a>(
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    super::trace::with_deep_stacks(|| run_parsed(args))
+    with_threads(thread_count(args), || run_parsed(args))
+}
+
+/// rtrace's `-n N` (processes): here, the number of threads (the last `-n` given; a
+/// bad value is reported by the option parser).
+pub(super) fn thread_count(args: &[String]) -> usize {
+    let at = args.iter().rposition(|a| a == "-n");
+    at.and_then(|i| args.get(i + 1))
+        .and_then(|v| v.parse::<f64>().ok())
+        .filter(|n| (1.0..=1024.0).contains(n))
+        .map_or(0, |n| n as usize)
 }
 
 fn run_parsed(args: &[String]) -> ExitCode {
@@ -384,12 +401,15 @@ fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args) -> RayState
 
 /// Reads the scene files as one scene, reports their diagnostics on stderr (warnings
 /// only if asked), and compiles it; scenes with errors, or with things radc cannot
-/// render, are refused.
+/// render, are refused. A compiled scene (`radc build`) is loaded instead.
 pub(super) fn load_scene(
     paths: &[PathBuf],
     command: &str,
     warnings: bool,
 ) -> Result<Scene, ExitCode> {
+    if let Some(compiled) = super::build::load_compiled(paths, command) {
+        return compiled;
+    }
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let ir = super::check::check_scene(
@@ -413,11 +433,11 @@ pub(super) fn load_scene(
     }
     report::eprint(&diags, &sources);
     if diags.iter().any(|d| d.severity == Severity::Error) {
-        eprintln!("radc {command}: the scene has errors; nothing rendered");
+        errln!("radc {command}: the scene has errors; nothing rendered");
         return Err(ExitCode::from(1));
     }
     if unexpanded > 0 {
-        eprintln!(
+        errln!(
             "radc {command}: the scene has {unexpanded} '!' command line(s) radc does not run, so \
              it would render without what they make; run them and include their output"
         );
@@ -433,7 +453,7 @@ pub(super) fn load_scene(
                     Some(format!("{}:{line}:{col}: ", s.name))
                 })
                 .unwrap_or_default();
-            eprintln!("radc {command}: {place}cannot render {p}");
+            errln!("radc {command}: {place}cannot render {p}");
         }
         ExitCode::from(1)
     })
@@ -625,7 +645,12 @@ fn names(r: &RayState, scene: &Scene, o: Output) -> String {
 
 fn put(out: &mut impl Write, f: Format, v: &[f64]) {
     let _ = match f {
-        Format::Ascii => v.iter().try_for_each(|x| write!(out, "{}\t", c_exp(*x))),
+        Format::Ascii => v.iter().try_for_each(|x| {
+            let mut buf = [0u8; 40];
+            let n = c_exp_into(*x, &mut buf);
+            buf[n] = b'\t';
+            out.write_all(&buf[..=n])
+        }),
         Format::Float => v
             .iter()
             .try_for_each(|x| out.write_all(&(*x as f32).to_ne_bytes())),
@@ -638,7 +663,60 @@ fn put(out: &mut impl Write, f: Format, v: &[f64]) {
 }
 
 /// C's `%e`: six decimals and an exponent of at least two digits (`1.000000e+10`).
-pub(super) fn c_exp(x: f64) -> String {
+#[cfg(test)]
+fn c_exp(x: f64) -> String {
+    let mut buf = [0u8; 40];
+    let n = c_exp_into(x, &mut buf);
+    String::from_utf8_lossy(&buf[..n]).into_owned()
+}
+
+/// `c_exp` into `buf` (at least 39 bytes), returning the length: no allocation, since
+/// rtrace's output is a few numbers per ray and formatting them is on the hot path.
+/// The digits are Rust's exactly rounded `{:.6e}`; only the exponent is rewritten.
+fn c_exp_into(x: f64, buf: &mut [u8; 40]) -> usize {
+    let special: &[u8] = if x.is_nan() {
+        if x.is_sign_negative() {
+            b"-nan"
+        } else {
+            b"nan"
+        }
+    } else if x.is_infinite() {
+        if x < 0.0 { b"-inf" } else { b"inf" }
+    } else {
+        b""
+    };
+    if !special.is_empty() {
+        buf[..special.len()].copy_from_slice(special);
+        return special.len();
+    }
+    let mut cursor = std::io::Cursor::new(&mut buf[..]);
+    // At most "-d.dddddde-324": 14 bytes, so the write cannot fail.
+    let _ = write!(cursor, "{x:.6e}");
+    let len = cursor.position() as usize;
+    let Some(e) = buf[..len].iter().position(|&b| b == b'e') else {
+        return len;
+    };
+    let (negative, digits) = match buf[e + 1] {
+        b'-' => (true, e + 2),
+        _ => (false, e + 1),
+    };
+    let exp: u32 = buf[digits..len]
+        .iter()
+        .fold(0, |v, d| v * 10 + u32::from(d - b'0'));
+    let mut at = e + 1;
+    buf[at] = if negative { b'-' } else { b'+' };
+    at += 1;
+    if exp >= 100 {
+        buf[at] = b'0' + (exp / 100) as u8;
+        at += 1;
+    }
+    buf[at] = b'0' + (exp / 10 % 10) as u8;
+    buf[at + 1] = b'0' + (exp % 10) as u8;
+    at + 2
+}
+
+#[cfg(test)]
+fn c_exp_reference(x: f64) -> String {
     if x.is_nan() {
         return if x.is_sign_negative() { "-nan" } else { "nan" }.into();
     }
@@ -665,6 +743,24 @@ mod tests {
         assert_eq!(c_exp(3.141718), "3.141718e+00");
         assert_eq!(c_exp(-1.5e-120), "-1.500000e-120");
         assert_eq!(c_exp(9.9999999e9), "1.000000e+10");
+        assert_eq!(c_exp(f64::MIN_POSITIVE / 8.0), "2.781342e-309");
+        assert_eq!(c_exp(f64::NAN), "nan");
+        assert_eq!(c_exp(f64::NEG_INFINITY), "-inf");
+    }
+
+    /// The allocation-free formatter equals the straightforward one everywhere.
+    #[test]
+    fn c_exp_into_matches_the_reference() {
+        let mut x = 1.234_567_891e-300_f64;
+        while x < 1e300 {
+            for v in [x, -x, x * 0.999_999_95, x * 1.000_000_5] {
+                assert_eq!(c_exp(v), c_exp_reference(v), "{v:e}");
+            }
+            x *= 7.77;
+        }
+        for v in [0.0, -0.0, f64::MAX, f64::MIN, 5e-324, 1.0, 9.9999995, 0.5] {
+            assert_eq!(c_exp(v), c_exp_reference(v), "{v:e}");
+        }
     }
 
     #[test]

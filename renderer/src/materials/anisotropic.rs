@@ -6,7 +6,7 @@ use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, FTINY, Vec3, normalize, perpendicular};
 use std::f64::consts::PI;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Anisotropic {
     pub color: Color,
     pub spec: f64,

@@ -7,7 +7,7 @@
 use super::MaterialId;
 use crate::integrator::{RayState, Tracer};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Antimatter {
     /// The clipped modifiers (primitive indices).
     pub modifiers: Vec<i64>,

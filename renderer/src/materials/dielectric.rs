@@ -6,7 +6,7 @@
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, FTINY, normalize};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Dielectric {
     /// Transmission per unit length inside (the side the normal points away from).
     pub inside: Color,

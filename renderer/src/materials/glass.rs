@@ -6,7 +6,7 @@
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, normalize};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Glass {
     pub transmission: Color,
     pub index: f64,

@@ -7,13 +7,13 @@ use super::Alternate;
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, FTINY, Vec3, normalize};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Emitter {
     pub color: Color,
     pub kind: EmitterKind,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum EmitterKind {
     Light,
     /// Lights points within `max_radius` directly; 0 never, negative never and never
@@ -29,7 +29,7 @@ pub enum EmitterKind {
 }
 
 /// A spotlight's cone (srcsupp.c's `makespot`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Spot {
     /// Solid angle of the cone.
     pub size: f64,

@@ -5,7 +5,7 @@ use super::Alternate;
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, normalize};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Mirror {
     pub color: Color,
     pub alternate: Alternate,

@@ -6,7 +6,7 @@
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::Color;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Mist {
     pub extinction: Color,
 }

@@ -15,10 +15,10 @@ pub mod trans;
 use crate::math::Color;
 
 /// Index into [`crate::scene::Scene::materials`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct MaterialId(pub u32);
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Material {
     /// `plastic` and `metal`: Radiance's "normal" materials (normal.c).
     Normal(plastic::Normal),
@@ -35,7 +35,7 @@ pub enum Material {
 }
 
 /// A material named in another's string argument (illum and mirror alternates).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Alternate {
     /// No alternate given.
     None,

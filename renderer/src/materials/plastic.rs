@@ -17,7 +17,7 @@ fn fresnel(ci: f64) -> f64 {
 /// Smallest specularity that gets the Fresnel estimate.
 const FRESNEL_THRESHOLD: f64 = 0.017999;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Normal {
     pub color: Color,
     pub spec: f64,

@@ -7,7 +7,7 @@ use super::quadratic;
 use crate::math::{Bounds, FTINY, Vec3, normalize};
 use crate::ray::{Ray, ShapeHit};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Cone {
     pub p0: Vec3,
     pub r0: f64,

@@ -14,7 +14,7 @@ pub use sphere::Sphere;
 use crate::math::{Bounds, FTINY};
 use crate::ray::{Ray, ShapeHit};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Shape {
     Sphere(Sphere),
     Polygon(Polygon),

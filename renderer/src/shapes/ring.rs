@@ -4,7 +4,7 @@
 use crate::math::{Bounds, FTINY, Vec3, normalize};
 use crate::ray::{Ray, ShapeHit};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Ring {
     pub center: Vec3,
     pub normal: Vec3,

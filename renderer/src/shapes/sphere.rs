@@ -5,7 +5,7 @@ use super::Quadratic;
 use crate::math::{Bounds, FTINY, Vec3};
 use crate::ray::{Ray, ShapeHit};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Sphere {
     pub center: Vec3,
     pub radius: f64,
