@@ -90,14 +90,17 @@ impl Normal {
             if s.has_highlight && s.rspec <= threshold {
                 amb += s.specular;
             }
-            r.color += amb * t.options().ambient;
+            let indirect = t.ambient(r, amb, s.normal);
+            r.color += indirect;
         }
         if s.tdiff > FTINY {
             // Ambient from the other side; a rough transmission below the threshold
             // counts as diffuse.
             let below = s.has_rough_transmission && s.tspec <= threshold;
             let k = if below { s.trans } else { s.tdiff };
-            r.color += s.color * k * t.options().ambient;
+            // From the other side: the hemisphere behind the surface.
+            let indirect = t.ambient(r, s.color * k, -s.normal);
+            r.color += indirect;
         }
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
