@@ -71,6 +71,9 @@ def cases():
              rays=[[0, 0, 0, s30[0], 0, s30[1]]]),
         dict(id="disk-axis", scene=DISK, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
         dict(id="rect-corner", scene=RECT, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
+        # Jittered source samples (-dj 1): random points over each partition.
+        dict(id="rect-jitter", scene=RECT, options=["-ab", "0", "-ds", ".05", "-dj", "1"],
+             rays=[[0, 0, 0, 0, 0, 1]], repeat=400),
         dict(id="glow-dome", scene=GLOW_DOME, options=["-ab", "1", "-ad", "64"],
              rays=[[0, 0, 0, 0, 0, 1], [3, -2, 0, 0, 0, 1]]),
         dict(id="integrating-ab3", scene=INTEGRATING, options=["-ab", "3", "-ad", "64"],
