@@ -2,12 +2,14 @@
 """Error against time for `radc render` and `rpict` with ambient bounces (issue #6).
 
 One simple room (tests/data/accuracy/room-ab1.rad: a grey genbox room, a red wall, a
-ceiling panel) seen from a corner at 48 x 36 pixels, one ray per pixel centre in both
+ceiling panel) seen from a corner at 64 x 48 pixels, one ray per pixel centre in both
 (rpict -pj 0 -ps 1), one ambient bounce, pure Monte Carlo (rpict -aa 0: no irradiance
 cache, which radc does not have), every shadow tested (-dt 0), no source jitter.
 
-The reference is rpict with -ad 2048 (computed once, 8x the samples of the largest row;
-its own noise, about 0.2% per pixel, adds in quadrature to the figures). For each -ad, both programs render the same view; the table gives the wall time
+The reference is rpict with -ad 4096 (computed once, 4x the samples of the largest row;
+its own noise, about 0.15% per pixel, adds in quadrature to the figures). "bias" is
+the picture's mean brightness against the reference's (systematic differences would
+show there, noise averages out). For each -ad, both programs render the same view; the table gives the wall time
 and the RMSE of pixel brightness against the reference, relative to the reference's
 mean brightness. radc runs on one thread (RAYON_NUM_THREADS=1, as rpict runs one
 process) and on all cores. Pictures are read with Radiance's pvalue.
@@ -29,9 +31,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "tests", "data", "accuracy", "room-ab1.rad")
 VIEW = ["-vtv", "-vp", "0.3", "0.3", "1.4", "-vd", "1", "0.7", "-0.15", "-vu", "0", "0", "1",
         "-vh", "75", "-vv", "60"]
-SIZE = ["-x", "48", "-y", "36"]
+SIZE = ["-x", "64", "-y", "48"]
 COMMON = ["-ab", "1", "-aa", "0", "-as", "0", "-dt", "0", "-dj", "0", "-lr", "7", "-lw", "1e-4"]
-REFERENCE_AD = 2048
+REFERENCE_AD = 4096
 
 
 def brightness(pic):
@@ -46,6 +48,10 @@ def rmse(a, ref):
     return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, ref)) / len(ref)) / mean
 
 
+def bias(a, ref):
+    return sum(a) / sum(ref) - 1.0
+
+
 def timed(cmd, out, env=None):
     t = time.perf_counter()
     with open(out, "wb") as f:
@@ -57,7 +63,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--no-build", action="store_true")
     ap.add_argument("--radc", default=os.path.join(ROOT, "target", "release", "radc"))
-    ap.add_argument("--ads", default="16,64,256")
+    ap.add_argument("--ads", default="16,64,256,1024")
     args = ap.parse_args()
     if not args.no_build:
         subprocess.run(["cargo", "build", "--release", "--bin", "radc"], cwd=ROOT, check=True)
@@ -72,16 +78,17 @@ def main():
         tref = timed(rpict + ["-ad", str(REFERENCE_AD), octree], ref_pic)
         ref = brightness(ref_pic)
         print("reference: rpict -ad %d, %.1f s; mean brightness %.4g" % (REFERENCE_AD, tref, sum(ref) / len(ref)))
-        print("| -ad | rpict s | rpict RMSE | radc 1 thread s | radc all cores s | radc RMSE |")
-        print("|---:|---:|---:|---:|---:|---:|")
+        print("| -ad | rpict s | rpict RMSE | rpict bias | radc 1 thread s | radc all cores s | radc RMSE | radc bias |")
+        print("|---:|---:|---:|---:|---:|---:|---:|---:|")
         for ad in [int(x) for x in args.ads.split(",")]:
             p1 = os.path.join(tmp, "rpict%d.hdr" % ad)
             p2 = os.path.join(tmp, "radc%d.hdr" % ad)
             t1 = timed(rpict + ["-ad", str(ad), octree], p1)
             t2 = timed(radc + ["-ad", str(ad), SCENE], p2, env=one)
             t3 = timed(radc + ["-ad", str(ad), SCENE], p2)
-            print("| %d | %.2f | %.4f | %.2f | %.2f | %.4f |" % (
-                ad, t1, rmse(brightness(p1), ref), t2, t3, rmse(brightness(p2), ref)))
+            b1, b2 = brightness(p1), brightness(p2)
+            print("| %d | %.2f | %.4f | %+.4f | %.2f | %.2f | %.4f | %+.4f |" % (
+                ad, t1, rmse(b1, ref), bias(b1, ref), t2, t3, rmse(b2, ref), bias(b2, ref)))
             sys.stdout.flush()
     return 0
 
