@@ -3,8 +3,10 @@
 //! one ray per line; or binary `-ff`/`-fd`). Takes rtrace's options; the ones radc does
 //! not model yet are refused rather than silently ignored.
 //!
-//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`) and no source
-//! jitter (`-dj 0`); light relayed by mirrors (`-dr`) is included.
+//! Evaluation follows rtrace with every shadow tested (`-dt 0`) and no irradiance cache
+//! (`-aa 0`: ambient values from `-ab` are always computed); light relayed by mirrors
+//! (`-dr`) is included. Each input ray's random choices (`-ab`, `-dj`) derive from its
+//! line number, so output repeats exactly for any thread count.
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
