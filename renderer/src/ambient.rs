@@ -43,7 +43,8 @@ impl Tracer<'_> {
             wt = wt.min(0.8 * intensity(coef) * r.weight / (ad * o.min_weight));
         }
         let n = ((ad * wt).sqrt() + 0.5).max(1.0) as usize;
-        let n = n.min(1 << 12);
+        // At most a million samples per hemisphere, whatever -ad asks.
+        let n = n.min(1 << 10);
         let strata = n * n;
         let acoef = coef / strata as f64;
         let mut sums = vec![Color::ZERO; strata];
