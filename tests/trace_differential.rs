@@ -237,7 +237,10 @@ fn refuses_bad_and_unsupported_scenes() {
     assert!(out.stdout.is_empty());
     assert!(String::from_utf8_lossy(&out.stderr).contains("'!' command"));
 
-    let out = run_raw(&["-ab", "2", bad.to_str().expect("path")], b"");
+    // Options radc does not model, or bad values, are usage errors.
+    let out = run_raw(&["-ma", "1", "1", "1", bad.to_str().expect("path")], b"");
+    assert_eq!(out.status.code(), Some(2));
+    let out = run_raw(&["-ab", "two", bad.to_str().expect("path")], b"");
     assert_eq!(out.status.code(), Some(2));
 }
 

@@ -2,7 +2,7 @@
 //! broken as `rayreject` breaks them), shade it with its material, fall back on distant
 //! sources for rays that hit nothing, and add direct light by shadow rays to each
 //! source sample (`direct()` in source.c, testing every sample: rtrace `-dt 0`). Indirect
-//! light is the constant ambient value (`-ab 0 -av r g b`).
+//! light is sampled by [`crate::ambient`] for `-ab` bounces, then the constant `-av`.
 
 use crate::lights::{SourceSample, SourceTarget};
 use crate::materials::plastic::Normal;
@@ -66,6 +66,28 @@ pub struct Options {
     pub medium: Color,
     /// `-dv`: light sources are seen by rays (otherwise only by shadow rays).
     pub direct_visible: bool,
+    /// `-ab`: ambient bounces: diffuse reflections estimated by Monte Carlo hemisphere
+    /// sampling before the constant `-av` takes over.
+    pub ambient_bounces: u32,
+    /// `-ad`: hemisphere samples at full ray weight (0: no sampling).
+    pub ambient_divisions: u32,
+    /// `-as`: extra samples, at full ray weight, for the strata that differ most from
+    /// their neighbours.
+    pub ambient_supersamples: u32,
+    /// `-dj`: source jitter, 0 (sample points at partition centres) to 1 (anywhere in
+    /// the partition).
+    pub source_jitter: f64,
+    /// Rays below `-lw` play Russian roulette when `-lr` is not positive (Radiance's
+    /// `rayorigin`). Off, they are dropped, which keeps `-ab 0 -dj 0` deterministic.
+    pub russian_roulette: bool,
+}
+
+impl Options {
+    /// Whether any option asks for random sampling (then Russian roulette is played as
+    /// Radiance plays it).
+    pub fn samples_randomly(&self) -> bool {
+        (self.ambient_bounces > 0 && self.ambient_divisions > 0) || self.source_jitter > 0.0
+    }
 }
 
 impl Default for Options {
@@ -82,6 +104,11 @@ impl Default for Options {
             relays: 2,
             medium: Color::ZERO,
             direct_visible: true,
+            ambient_bounces: 0,
+            ambient_divisions: 1024,
+            ambient_supersamples: 512,
+            source_jitter: 0.0,
+            russian_roulette: false,
         }
     }
 }
@@ -137,6 +164,11 @@ pub struct RayState {
     /// For each transmitted link up the ray tree: the modifier of the surface passed
     /// and whether it was entered from the front (antimatter's penetration count).
     pub passages: Vec<(i64, bool)>,
+    /// Seed of this ray's random choices ([`crate::random`]).
+    pub seed: u64,
+    /// Ambient rays among this ray's ancestors (and itself): Radiance's ambient
+    /// recursion depth, compared with `-ab`.
+    pub ambient_depth: u32,
 }
 
 impl RayState {
@@ -166,6 +198,8 @@ impl RayState {
             clipset: Vec::new(),
             new_clipset: None,
             passages: Vec::new(),
+            seed: 0,
+            ambient_depth: 0,
         }
     }
 
@@ -213,6 +247,11 @@ impl RayState {
         }
     }
 }
+
+/// Salt of a ray's Russian roulette draw.
+const ROULETTE: u64 = 0x5255_4c45;
+/// Salts of the jitter of each source's samples (plus the source index).
+const SOURCE_JITTER: u64 = 0x4a49_5454_0000;
 
 /// Longest chain of rays radc follows. Radiance limits reflections (`-lr`) but not rays
 /// passing through surfaces; a scene of thousands of stacked `void` surfaces would
@@ -285,9 +324,16 @@ impl<'a> Tracer<'a> {
 
     /// A primary ray that may hit nothing beyond `max_distance` (0: no limit).
     pub fn radiance_within(&self, org: Vec3, dir: Vec3, max_distance: f64) -> RayState {
+        self.radiance_seeded(org, dir, max_distance, 0)
+    }
+
+    /// [`Tracer::radiance_within`] for primary ray number `index` (its random choices
+    /// derive from the index alone).
+    pub fn radiance_seeded(&self, org: Vec3, dir: Vec3, max_distance: f64, index: u64) -> RayState {
         let mut r = RayState::primary(org, dir);
         r.max_distance = max_distance;
         r.extinction = self.options.medium;
+        r.seed = crate::random::primary_seed(index);
         self.trace(&mut r);
         r
     }
@@ -295,7 +341,13 @@ impl<'a> Tracer<'a> {
     /// Irradiance at `org` for a surface facing `dir` (rtrace `-I`): a white Lambertian
     /// surface of reflectance `pi` pretended to be hit just in front of the point.
     pub fn irradiance(&self, org: Vec3, dir: Vec3) -> RayState {
+        self.irradiance_seeded(org, dir, 0)
+    }
+
+    /// [`Tracer::irradiance`] for input ray number `index`.
+    pub fn irradiance_seeded(&self, org: Vec3, dir: Vec3, index: u64) -> RayState {
         let mut r = RayState::primary(org + dir * 1.1e-4, -dir);
+        r.seed = crate::random::primary_seed(index);
         r.extinction = self.options.medium;
         r.length = 1e-5;
         r.other_length = 1e-5;
@@ -399,8 +451,21 @@ impl<'a> Tracer<'a> {
 
     /// A child ray from `r`'s hit point (`rayorigin`), or `None` when it would be too
     /// weak or too deep. Radiance plays Russian roulette with rays below `-lw` when `-lr`
-    /// is not positive; radc drops them, which keeps results repeatable.
+    /// is not positive; radc does too when it samples at random (`-ab`, `-dj`), and
+    /// otherwise drops them, which keeps results repeatable.
     pub fn spawn(&self, r: &RayState, kind: RayKind, coef: Option<Color>) -> Option<RayState> {
+        self.spawn_salted(r, kind, coef, u64::from(kind.0))
+    }
+
+    /// [`Tracer::spawn`] for one of several siblings of one kind: `salt` tells them
+    /// apart in the child's seed.
+    pub fn spawn_salted(
+        &self,
+        r: &RayState,
+        kind: RayKind,
+        coef: Option<Color>,
+        salt: u64,
+    ) -> Option<RayState> {
         if r.length >= FHUGE * 0.99 {
             return None;
         }
@@ -439,6 +504,8 @@ impl<'a> Tracer<'a> {
         }
         child.level = r.level + u32::from(kind.reflects());
         child.depth = r.depth + 1;
+        child.seed = crate::random::derive(r.seed, salt);
+        child.ambient_depth = r.ambient_depth + u32::from(kind == RayKind::AMBIENT);
         if child.depth > MAX_CHAIN {
             return None;
         }
@@ -452,7 +519,20 @@ impl<'a> Tracer<'a> {
         let o = &self.options;
         let limit = o.max_depth.unsigned_abs();
         let ok = if o.max_depth <= 0 && coef.is_some() {
-            !(o.max_depth < 0 && child.level > limit) && child.weight >= o.min_weight
+            if o.max_depth < 0 && child.level > limit {
+                return None;
+            }
+            if child.weight < o.min_weight && o.russian_roulette && o.min_weight > 0.0 {
+                // Survivors are promoted to the limit weight, their coefficient scaled to
+                // keep the estimate unbiased.
+                let keep = child.weight / o.min_weight;
+                if crate::random::uniform(child.seed, ROULETTE) >= keep {
+                    return None;
+                }
+                child.coef /= keep;
+                child.weight = o.min_weight;
+            }
+            child.weight >= o.min_weight
         } else {
             child.weight >= o.min_weight && child.level <= limit
         };
@@ -573,10 +653,17 @@ impl<'a> Tracer<'a> {
         let mut samples: Vec<SourceSample> = Vec::new();
         for (si, s) in self.scene.sources.iter().enumerate() {
             samples.clear();
-            s.samples(
+            let jitter = (self.options.source_jitter > 0.0).then(|| {
+                (
+                    self.options.source_jitter,
+                    crate::random::derive(r.seed, SOURCE_JITTER + si as u64),
+                )
+            });
+            s.jittered_samples(
                 r.point,
                 r.weight,
                 self.options.source_size_ratio,
+                jitter,
                 &mut samples,
             );
             for sample in &samples {

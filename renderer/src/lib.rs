@@ -1,6 +1,7 @@
 //! radc's renderer: a compiled scene (shapes, BVH, materials, light sources) and the
 //! ray evaluation that reproduces Radiance's rtrace. It sees typed scenes, never text.
 
+pub mod ambient;
 pub mod bvh;
 pub mod camera;
 pub mod integrator;
@@ -8,6 +9,7 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod picture;
+pub mod random;
 pub mod ray;
 pub mod scene;
 pub mod scene_file;

@@ -214,6 +214,20 @@ impl Source {
     /// The shadow-ray samples from `org` for a ray of weight `weight`, with `-ds`
     /// `size_ratio`, appended to `out`.
     pub fn samples(&self, org: Vec3, weight: f64, size_ratio: f64, out: &mut Vec<SourceSample>) {
+        self.jittered_samples(org, weight, size_ratio, None, out);
+    }
+
+    /// [`Source::samples`] with `-dj`: `jitter` is the fraction of each partition a
+    /// sample may move by from its centre (Radiance's `dstrsrc`) and the seed of the
+    /// moves; `None` keeps the centres.
+    pub fn jittered_samples(
+        &self,
+        org: Vec3,
+        weight: f64,
+        size_ratio: f64,
+        jitter: Option<(f64, u64)>,
+        out: &mut Vec<SourceSample>,
+    ) {
         if self.skipped_from(org) {
             return;
         }
@@ -247,8 +261,12 @@ impl Source {
         };
         let np = parts.len();
         let local = !matches!(self.shape, SourceShape::Distant { .. });
-        for p in parts {
-            let Some(mut s) = self.sample(org, p, np) else {
+        for (k, p) in parts.into_iter().enumerate() {
+            let offset = jitter.map(|(j, seed)| {
+                let seed = crate::random::derive(seed, k as u64);
+                [0u64, 1, 2].map(|a| j * (1.0 - 2.0 * crate::random::uniform(seed, a)))
+            });
+            let Some(mut s) = self.sample(org, p, np, offset) else {
                 continue;
             };
             if let Some(prox) = self.proximity
@@ -280,7 +298,15 @@ impl Source {
         }
     }
 
-    fn sample(&self, org: Vec3, p: Part, np: usize) -> Option<SourceSample> {
+    /// The sample of partition `p` (of `np`), moved from its centre by `offset` (each in
+    /// -1..1, times the partition's half-size per axis) when jittered.
+    fn sample(
+        &self,
+        org: Vec3,
+        p: Part,
+        np: usize,
+        offset: Option<[f64; 3]>,
+    ) -> Option<SourceSample> {
         let m = f64::from(MAXSPART);
         let mut vpos = [
             f64::from(p.cent[0]) / m,
@@ -288,9 +314,16 @@ impl Source {
             f64::from(p.cent[2]) / m,
         ];
         let frac = |i: usize| f64::from(p.size[i]) / m;
+        let off = offset.unwrap_or([0.0; 3]);
+        for (i, o) in off.iter().enumerate() {
+            vpos[i] += o * frac(i);
+        }
         match &self.shape {
             SourceShape::Sphere { center, radius } => {
-                let mut dir = *center - org;
+                // Jittered: a point of the cube inscribed in the sphere, so that every
+                // shadow ray still meets it (the solid angle stays the whole sphere's).
+                let half = *radius * (1.0 / 3.0f64).sqrt();
+                let mut dir = *center + Vec3::from_array(vpos) * half - org;
                 let d = normalize(&mut dir);
                 if d == 0.0 {
                     return None;
@@ -364,11 +397,22 @@ impl Source {
             SourceShape::Distant {
                 direction,
                 solid_angle,
-            } => Some(SourceSample {
-                dir: *direction,
-                omega: frac(0) * frac(1) * frac(2) * solid_angle,
-                dist: FHUGE,
-            }),
+            } => {
+                let mut dir = *direction;
+                if offset.is_some()
+                    && let Some(p) = perpendicular(dir)
+                {
+                    // Across the source's disk of directions.
+                    let r = (solid_angle / std::f64::consts::PI).sqrt();
+                    dir += (p * vpos[0] + dir.cross(p) * vpos[1]) * r;
+                    normalize(&mut dir);
+                }
+                Some(SourceSample {
+                    dir,
+                    omega: frac(0) * frac(1) * frac(2) * solid_angle,
+                    dist: FHUGE,
+                })
+            }
         }
     }
 }

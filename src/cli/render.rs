@@ -19,8 +19,8 @@ use super::USAGE_ERROR;
 use super::trace::{load_scene, number, render_option};
 
 const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
-[-vv deg] [-x res] [-y res] [-pa aspect] [-ab 0] [-av r g b] [-e errfile] [-o picture.hdr|x.png]... \
-scene.rad...|scene.rsc";
+[-vv deg] [-x res] [-y res] [-pa aspect] [-ab N] [-ad N] [-as N] [-av r g b] [-dj frac] [-e errfile] \
+[-o picture.hdr|x.png]... scene.rad...|scene.rsc";
 
 struct Args {
     view: View,
@@ -61,6 +61,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             source_size_ratio: 0.25,
             max_depth: 7,
             relays: 1,
+            ambient_divisions: 512,
+            ambient_supersamples: 128,
             ..Options::default()
         },
         outputs: Vec::new(),
@@ -183,18 +185,20 @@ fn run_parsed(args: &[String]) -> ExitCode {
             .flat_map_iter(|row| {
                 let j = h - 1 - row;
                 let (camera, tracer) = (&camera, &tracer);
-                let row: Vec<Color> = (0..w)
+                let row_pixels: Vec<Color> = (0..w)
                     .map(move |i| {
                         let x = (f64::from(i) + 0.5) / f64::from(w);
                         let y = (f64::from(j) + 0.5) / f64::from(h);
                         // Outside a fisheye's circle the picture is black.
+                        // Random choices derive from the pixel's index, not the thread.
+                        let index = u64::from(row) * u64::from(w) + u64::from(i);
                         camera.ray(x, y).map_or(Color::ZERO, |(org, dir, max)| {
-                            tracer.radiance_within(org, dir, max).color
+                            tracer.radiance_seeded(org, dir, max, index).color
                         })
                     })
                     .collect();
                 done.fetch_add(1, Ordering::Relaxed);
-                row
+                row_pixels
             })
             .collect();
         // Rows done: tells the progress thread to finish.

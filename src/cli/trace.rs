@@ -3,8 +3,10 @@
 //! one ray per line; or binary `-ff`/`-fd`). Takes rtrace's options; the ones radc does
 //! not model yet are refused rather than silently ignored.
 //!
-//! Evaluation follows rtrace with `-ab 0`, every shadow tested (`-dt 0`) and no source
-//! jitter (`-dj 0`); light relayed by mirrors (`-dr`) is included.
+//! Evaluation follows rtrace with every shadow tested (`-dt 0`) and no irradiance cache
+//! (`-aa 0`: ambient values from `-ab` are always computed); light relayed by mirrors
+//! (`-dr`) is included. Each input ray's random choices (`-ab`, `-dj`) derive from its
+//! line number, so output repeats exactly for any thread count.
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
@@ -18,8 +20,8 @@ use rayon::prelude::*;
 use super::USAGE_ERROR;
 use super::report::{self, Sources};
 
-const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab 0] [-av r g b] \
-[-ds f] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
+const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
+[-ds f] [-dj f] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
 
 /// Rays evaluated together (in parallel) between writes.
 const BATCH: usize = 4096;
@@ -256,20 +258,12 @@ pub(super) fn render_option<'a>(
 ) -> Result<bool, String> {
     match arg {
         s if switch(s, "-bv", &mut o.backface_visible) => {}
-        "-ab" => {
-            if number(it, "-ab")? != 0.0 {
-                return Err(
-                    "indirect lighting (-ab > 0) is not implemented yet; use -ab 0 with -av".into(),
-                );
-            }
-        }
+        "-ab" => o.ambient_bounces = number(it, "-ab")?.clamp(0.0, 1e6) as u32,
+        "-ad" => o.ambient_divisions = number(it, "-ad")?.clamp(0.0, 1e9) as u32,
+        "-as" => o.ambient_supersamples = number(it, "-as")?.clamp(0.0, 1e9) as u32,
         "-av" => o.ambient = Vec3::new(number(it, "-av")?, number(it, "-av")?, number(it, "-av")?),
         "-ds" => o.source_size_ratio = number(it, "-ds")?,
-        "-dj" => {
-            if number(it, "-dj")? != 0.0 {
-                return Err("source jitter (-dj > 0) is not implemented yet; use -dj 0".into());
-            }
-        }
+        "-dj" => o.source_jitter = number(it, "-dj")?.clamp(0.0, 1.0),
         "-lr" => o.max_depth = number(it, "-lr")? as i32,
         "-lw" => o.min_weight = number(it, "-lw")?,
         "-st" => o.specular_threshold = number(it, "-st")?,
@@ -289,13 +283,19 @@ pub(super) fn render_option<'a>(
         "-mg" | "-ms" => {
             number(it, arg)?;
         }
-        "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-ad" | "-as" | "-aw" => {
+        // The irradiance cache's options: radc does not cache (every ambient value is
+        // computed, Radiance's -aa 0), so they change nothing.
+        "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-aw" => {
             number(it, arg)?;
+        }
+        "-ai" | "-ae" | "-aI" | "-aE" | "-af" => {
+            it.next().ok_or_else(|| format!("{arg} needs a value"))?;
         }
         s if switch(s, "-dv", &mut o.direct_visible) => {}
         s if s.starts_with("-u") => {}
         _ => return Ok(false),
     }
+    o.russian_roulette = o.samples_randomly();
     Ok(true)
 }
 
@@ -354,6 +354,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
     let stdin = std::io::stdin();
     let mut input = RayReader::new(BufReader::new(stdin.lock()), a.input);
     let mut last = (Vec3::ZERO, Vec3::ZERO);
+    let mut index = 0u64;
     loop {
         let want = remaining.map_or(BATCH, |n| (n as usize).min(BATCH));
         if want == 0 {
@@ -364,10 +365,13 @@ fn run_parsed(args: &[String]) -> ExitCode {
             *n -= (batch.len() + usize::from(flush)) as u64;
             done |= *n == 0;
         }
+        // Each ray's random choices derive from its index in the input.
         let results: Vec<RayState> = batch
             .par_iter()
-            .map(|&(org, dir)| evaluate(&tracer, org, dir, &a))
+            .enumerate()
+            .map(|(k, &(org, dir))| evaluate(&tracer, org, dir, &a, index + k as u64))
             .collect();
+        index += (batch.len() + usize::from(flush)) as u64;
         for r in &results {
             write_ray(&mut out, r, &scene, &a);
             last = (r.org, r.dir);
@@ -389,13 +393,14 @@ fn run_parsed(args: &[String]) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args) -> RayState {
+fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args, index: u64) -> RayState {
     let length = normalize(&mut dir);
     if a.irradiance {
-        tracer.irradiance(org, dir)
+        tracer.irradiance_seeded(org, dir, index)
     } else {
         // -ld: the direction's length is how far the ray may go.
-        tracer.radiance_within(org, dir, if a.limit_distance { length } else { 0.0 })
+        let max = if a.limit_distance { length } else { 0.0 };
+        tracer.radiance_seeded(org, dir, max, index)
     }
 }
 
@@ -794,6 +799,6 @@ mod tests {
     fn switches_toggle() {
         let a = parse_args(&["-h".into(), "-I+".into(), "x.rad".into()]).unwrap();
         assert!(!a.header && a.irradiance);
-        assert!(parse_args(&["-ab".into(), "1".into(), "x.rad".into()]).is_err());
+        assert!(parse_args(&["-ab".into(), "x".into(), "x.rad".into()]).is_err());
     }
 }

@@ -58,7 +58,8 @@ impl Anisotropic {
             if s.reflects && self.spec <= threshold {
                 amb += s.specular;
             }
-            r.color += amb * t.options().ambient;
+            let indirect = t.ambient(r, amb, s.normal);
+            r.color += indirect;
         }
         if s.tdiff > FTINY {
             let k = if s.transmits && s.tspec <= threshold {
@@ -66,7 +67,9 @@ impl Anisotropic {
             } else {
                 s.tdiff
             };
-            r.color += s.color * k * t.options().ambient;
+            // From the other side: the hemisphere behind the surface.
+            let indirect = t.ambient(r, s.color * k, -s.normal);
+            r.color += indirect;
         }
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }

@@ -8,6 +8,7 @@
 
 use crate::integrator::{RayKind, RayState, Tracer};
 use crate::math::{Color, FTINY, Vec3, normalize, perpendicular};
+use crate::random::uniform;
 use std::f64::consts::PI;
 
 /// Fresnel estimate at cosine `ci` (normal.c's `FRESNE`).
@@ -85,19 +86,25 @@ impl Normal {
         if s.has_highlight && s.rspec > threshold {
             self.specular_sample(t, r, &s);
         }
+        if s.has_rough_transmission && s.tspec > threshold && t.options().samples_randomly() {
+            self.transmitted_sample(t, r, &s);
+        }
         if s.rdiff > FTINY {
             let mut amb = s.color * s.rdiff;
             if s.has_highlight && s.rspec <= threshold {
                 amb += s.specular;
             }
-            r.color += amb * t.options().ambient;
+            let indirect = t.ambient(r, amb, s.normal);
+            r.color += indirect;
         }
         if s.tdiff > FTINY {
             // Ambient from the other side; a rough transmission below the threshold
             // counts as diffuse.
             let below = s.has_rough_transmission && s.tspec <= threshold;
             let k = if below { s.trans } else { s.tdiff };
-            r.color += s.color * k * t.options().ambient;
+            // From the other side: the hemisphere behind the surface.
+            let indirect = t.ambient(r, s.color * k, -s.normal);
+            r.color += indirect;
         }
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
@@ -177,27 +184,74 @@ impl Normal {
         r.mirror_length = r.length;
     }
 
-    /// A rough highlight above the `-st` threshold is sampled by one ray. Radiance
-    /// draws it at random; radc takes the median of the Gaussian at a fixed azimuth so
-    /// results are repeatable (they differ from rtrace's random sample). Rough
-    /// transmission above the threshold is not sampled yet.
+    /// A rough highlight above the `-st` threshold is sampled by one ray (normal.c's
+    /// `gaussamp`): a half-vector drawn from the Gaussian, at a random azimuth. When
+    /// radc samples at random (`-ab > 0` or `-dj > 0`) the draw is random, as in
+    /// Radiance; otherwise radc takes the median of the Gaussian at a fixed azimuth so
+    /// results are repeatable (they differ from rtrace's random sample).
     fn specular_sample(&self, t: &Tracer<'_>, r: &mut RayState, s: &Shading) {
         let Some(u) = perpendicular(s.normal) else {
             return;
         };
+        let v = s.normal.cross(u);
         let Some(mut child) = t.spawn(r, RayKind::SPECULAR, Some(s.specular)) else {
             return;
         };
-        let d = (s.alpha2 * -(0.5f64).ln()).sqrt();
-        let h = s.normal + u * d;
-        let k = -2.0 * h.dot(r.dir) / (1.0 + d * d);
-        child.dir = r.dir + h * k;
-        if child.dir.dot(r.normal) <= FTINY {
-            return;
+        let random = t.options().samples_randomly();
+        // Directions below the surface are drawn again (up to Radiance's 10 tries).
+        for attempt in 0..if random { 10 } else { 1 } {
+            let (phi, q) = if random {
+                (
+                    2.0 * PI * uniform(child.seed, 2 * attempt),
+                    uniform(child.seed, 2 * attempt + 1),
+                )
+            } else {
+                (0.0, 0.5)
+            };
+            let d = if q <= FTINY {
+                1.0
+            } else {
+                (s.alpha2 * -q.ln()).sqrt()
+            };
+            let h = s.normal + (u * phi.cos() + v * phi.sin()) * d;
+            let k = -2.0 * h.dot(r.dir) / (1.0 + d * d);
+            child.dir = r.dir + h * k;
+            if child.dir.dot(r.normal) > FTINY {
+                normalize(&mut child.dir);
+                t.trace(&mut child);
+                r.color += child.color * child.coef;
+                return;
+            }
         }
-        normalize(&mut child.dir);
-        t.trace(&mut child);
-        r.color += child.color * child.coef;
+    }
+
+    /// Rough specular transmission above `-st` (normal.c's transmitted `gaussamp`),
+    /// sampled only when radc samples at random: a direction scattered about the
+    /// straight-through one by the Gaussian, on the far side of the surface.
+    fn transmitted_sample(&self, t: &Tracer<'_>, r: &mut RayState, s: &Shading) {
+        let Some(u) = perpendicular(s.normal) else {
+            return;
+        };
+        let v = s.normal.cross(u);
+        let Some(mut child) = t.spawn(r, RayKind::SPECULAR, Some(s.color * s.tspec)) else {
+            return;
+        };
+        for attempt in 0..10 {
+            let phi = 2.0 * PI * uniform(child.seed, 2 * attempt);
+            let q = uniform(child.seed, 2 * attempt + 1);
+            let d = if q <= FTINY {
+                1.0
+            } else {
+                (s.alpha2 * -q.ln()).sqrt()
+            };
+            child.dir = s.ray_dir + (u * phi.cos() + v * phi.sin()) * d;
+            normalize(&mut child.dir);
+            if child.dir.dot(r.normal) < -FTINY {
+                t.trace(&mut child);
+                r.color += child.color * child.coef;
+                return;
+            }
+        }
     }
 }
 

@@ -1,0 +1,307 @@
+//! `radc trace -I` on scenes with closed-form illuminance, against the exact answer and
+//! against real rtrace on the same scene with the same options (its values recorded by
+//! tests/oracle/regen_accuracy_goldens.py in tests/data/accuracy/cases.json): radc's
+//! error must be no larger than rtrace's. Both print seven significant digits, so radc
+//! is allowed that rounding (1e-6 relative) on top of rtrace's error.
+//!
+//! The cases with ambient bounces are built so that every hemisphere sample sees the
+//! same radiance (a uniform dome, the inside of a sphere), so Monte Carlo adds no noise
+//! and the comparison is exact; `room_statistics_agree_with_rtrace` compares means on
+//! a scene where it does add noise.
+//!
+//! `-I` measures 1e-4 in front of the given point, along the normal, in both programs;
+//! the formulas use that point.
+
+use std::f64::consts::PI;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+fn data() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/accuracy")
+}
+
+fn case(id: &str) -> Value {
+    let all: Value = serde_json::from_str(
+        &std::fs::read_to_string(data().join("cases.json")).expect("cases.json"),
+    )
+    .expect("cases.json parses");
+    all.as_array()
+        .expect("a list")
+        .iter()
+        .find(|c| c["id"] == id)
+        .unwrap_or_else(|| panic!("no case {id}"))
+        .clone()
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("a list")
+        .iter()
+        .map(|x| x.as_f64().expect("a number"))
+        .collect()
+}
+
+/// radc's irradiance (red channel) for each of the case's rays, each repeated
+/// `repeat` times.
+fn radc(c: &Value) -> Vec<f64> {
+    let id = c["id"].as_str().expect("id");
+    let options: Vec<String> = c["options"]
+        .as_array()
+        .expect("options")
+        .iter()
+        .map(|o| o.as_str().expect("option").to_string())
+        .collect();
+    let repeat = c["repeat"].as_u64().expect("repeat") as usize;
+    let mut input = String::new();
+    for ray in c["rays"].as_array().expect("rays") {
+        let line: Vec<String> = numbers(ray).iter().map(|x| format!("{x:.17}")).collect();
+        for _ in 0..repeat {
+            input.push_str(&line.join(" "));
+            input.push('\n');
+        }
+    }
+    let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
+        .args(["trace", "-h", "-I", "-ov"])
+        .args(&options)
+        .arg(data().join(format!("{id}.rad")))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("radc runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(input.as_bytes())
+        .expect("write rays");
+    let out = child.wait_with_output().expect("radc finishes");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            l.split_whitespace()
+                .next()
+                .expect("a value")
+                .parse()
+                .expect("a number")
+        })
+        .collect()
+}
+
+/// Asserts radc's error on each ray is no larger than rtrace's (plus printing).
+fn no_worse_than_rtrace(id: &str, exact: &[f64]) {
+    let c = case(id);
+    let ours = radc(&c);
+    let theirs: Vec<f64> = c["values"]
+        .as_array()
+        .expect("values")
+        .iter()
+        .map(|v| numbers(v)[0])
+        .collect();
+    assert_eq!(ours.len(), exact.len(), "{id}: ray count");
+    for ((o, t), e) in ours.iter().zip(&theirs).zip(exact) {
+        let (eo, et) = ((o - e).abs(), (t - e).abs());
+        assert!(
+            eo <= et + 1e-6 * e.abs(),
+            "{id}: radc {o} (error {:.2e}) vs rtrace {t} (error {:.2e}), exact {e}",
+            eo / e,
+            et / e
+        );
+        // And both are right to begin with.
+        assert!(eo <= 5e-2 * e.abs(), "{id}: radc {o}, exact {e}");
+    }
+}
+
+/// The point `-I` measures at, for a ray from `o` with unit normal `n`.
+fn measured(o: [f64; 3], n: [f64; 3]) -> [f64; 3] {
+    [o[0] + 1e-4 * n[0], o[1] + 1e-4 * n[1], o[2] + 1e-4 * n[2]]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// A sphere of radiance L, radius r, centre c seen from p, surface normal n, entirely
+/// above the horizon: with sin(alpha) = r / |c - p| and theta the angle between n and
+/// the direction to the centre,
+///     E = pi L sin^2(alpha) cos(theta).
+fn sphere_e(l: f64, r: f64, c: [f64; 3], p: [f64; 3], n: [f64; 3]) -> f64 {
+    let v = sub(c, p);
+    let d2 = dot(v, v);
+    PI * l * r * r / d2 * dot(n, v) / d2.sqrt()
+}
+
+/// Lamp L = 100, radius 0.5, centre (0, 0, 5); the point below it faces it.
+#[test]
+fn sphere_source_directly_below() {
+    let n = [0.0, 0.0, 1.0];
+    let e = sphere_e(100.0, 0.5, [0.0, 0.0, 5.0], measured([0.0; 3], n), n);
+    no_worse_than_rtrace("sphere-below", &[e]);
+}
+
+/// The same lamp, the surface tilted 50 degrees away from it.
+#[test]
+fn sphere_source_off_axis() {
+    let t = 50f64.to_radians();
+    let n = [t.sin(), 0.0, t.cos()];
+    let e = sphere_e(100.0, 0.5, [0.0, 0.0, 5.0], measured([0.0; 3], n), n);
+    no_worse_than_rtrace("sphere-off-axis", &[e]);
+}
+
+/// A Lambertian disk (ring) of radiance L = 40 and radius r = 1, facing a point on its
+/// axis at distance h (2 less the 1e-4 offset), parallel to it: integrating
+/// L cos^2 / d^2 over the disk,
+///     E = pi L r^2 / (r^2 + h^2).
+#[test]
+fn disk_source_on_axis() {
+    let (l, r, h) = (40.0, 1.0, 2.0 - 1e-4);
+    no_worse_than_rtrace("disk-axis", &[PI * l * r * r / (r * r + h * h)]);
+}
+
+/// A rectangle a = 3 by b = 2 of radiance L = 25, parallel to the surface at height
+/// c (1.5 less the offset), the point under one corner. With X = a / c, Y = b / c the
+/// differential-area-to-rectangle form factor is
+///     F = 1/(2 pi) [ X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2)) ]
+/// and E = pi L F.
+fn rectangle_e() -> f64 {
+    let (l, a, b, c) = (25.0, 3.0, 2.0, 1.5 - 1e-4);
+    let (x, y): (f64, f64) = (a / c, b / c);
+    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+    let f = (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI);
+    PI * l * f
+}
+
+#[test]
+fn rectangular_source_form_factor() {
+    no_worse_than_rtrace("rect-corner", &[rectangle_e()]);
+}
+
+/// The same rectangle with jittered samples (`-dj 1`): each partition is sampled at a
+/// random point, so the mean of many rays tends to the exact form factor (which the
+/// partition centres of `-dj 0` miss by 7e-4). radc's mean over 400 rays must be
+/// within 4.5 standard errors of the exact E, and agree with rtrace's mean as below.
+#[test]
+fn jittered_rectangle_is_unbiased() {
+    let e = rectangle_e();
+    let (mean, sd, n) = agree_with_rtrace("rect-jitter")[0];
+    let se = sd / (n as f64).sqrt();
+    assert!(
+        (mean - e).abs() <= 4.5 * se + 1e-6 * e,
+        "mean {mean} (se {se}) vs exact {e}"
+    );
+    assert!(se < 2e-3 * e, "jitter too noisy: se {se}");
+}
+
+/// A glowing dome (a `glow` bubble of radiance L = 2 with no source radius, so only
+/// ambient rays see it) over a black floor: one ambient bounce sees L in every
+/// direction of the upper hemisphere, and
+///     E = integral of L cos over the hemisphere = pi L,
+/// at the centre and off it alike.
+#[test]
+fn uniform_glowing_hemisphere() {
+    no_worse_than_rtrace("glow-dome", &[2.0 * PI, 2.0 * PI]);
+}
+
+/// An integrating sphere: a Lambertian bubble of reflectance rho = 0.5 and radius R = 1
+/// around a lamp of radiance L = 1e5 and radius r = 1e-3 at its centre.
+///
+/// Direct: on the wall E0 = pi L s with s = (r/R)^2 (the sphere formula); at the
+/// measured point, 1e-4 inside, E0' = pi L s' with s' = (r/R')^2, R' = R - 1e-4.
+/// Indirect: from any point of a sphere's inside, every equal area of the wall has the
+/// same form factor, so a wall of uniform radiance Lw gives E = pi Lw, less the
+/// cosine-weighted cone the lamp hides (a fraction sin^2 = s; ambient rays that meet a
+/// light source count nothing, as it is counted directly). The direct light is uniform,
+/// so every bounce is: the wall reached by the k-th of N ambient bounces has
+///     L_N = rho E0 / pi (past the last bounce, with -av 0),
+///     L_k = rho / pi (E0 + pi (1 - s) L_(k+1)),
+/// and the measured E = E0' + pi (1 - s') L_1. With many bounces L_k tends to
+///     L_inf = rho E0 / pi / (1 - rho (1 - s)),
+/// i.e. E -> E0 / (1 - rho) for a small lamp, the textbook E_direct / (1 - rho) (the
+/// indirect part being E0 rho / (1 - rho) = Phi / A * rho / (1 - rho) with the lamp's
+/// flux Phi = 4 pi^2 r^2 L spread over the wall's A = 4 pi R^2).
+fn integrating_sphere(bounces: Option<usize>) -> f64 {
+    let (l, r, big_r, rho) = (1e5, 1e-3, 1.0, 0.5);
+    let s = (r / big_r) * (r / big_r);
+    let rp = big_r - 1e-4;
+    let sp = (r / rp) * (r / rp);
+    let e0 = PI * l * s;
+    let l_inf = rho * e0 / PI / (1.0 - rho * (1.0 - s));
+    let l1 = match bounces {
+        Some(n) => {
+            let mut lk = rho * e0 / PI;
+            for _ in 1..n {
+                lk = rho / PI * (e0 + PI * (1.0 - s) * lk);
+            }
+            lk
+        }
+        None => l_inf,
+    };
+    PI * l * sp + PI * (1.0 - sp) * l1
+}
+
+/// Three bounces, `-av 0`: the finite sum above.
+#[test]
+fn integrating_sphere_three_bounces() {
+    let e = integrating_sphere(Some(3));
+    no_worse_than_rtrace("integrating-ab3", &[e, e]);
+}
+
+/// The limit of many bounces: with `-av` set to (1 - s) L_inf the wall past the first
+/// bounce already has its converged radiance rho E0 / pi + rho (1 - s) L_inf = L_inf,
+/// so one bounce gives the converged E.
+#[test]
+fn integrating_sphere_converged() {
+    no_worse_than_rtrace("integrating-converged", &[integrating_sphere(None)]);
+}
+
+/// Where Monte Carlo does add noise (a grey room with a red wall and a ceiling lamp,
+/// `-ab 1` and `-ab 2`, 16 hemisphere samples): each ray traced 400 times, radc's mean
+/// must lie within 4.5 standard errors of rtrace's mean (the combined standard error of
+/// the two means, from each program's sample deviation; chance of a false failure
+/// below 1e-5 per ray), and its spread must be comparable (between half and twice
+/// rtrace's).
+#[test]
+fn room_statistics_agree_with_rtrace() {
+    agree_with_rtrace("room-ab1");
+    agree_with_rtrace("room-ab2");
+}
+
+/// Compares radc's mean and spread on each of a stochastic case's rays with rtrace's;
+/// returns radc's (mean, sd, count) per ray.
+fn agree_with_rtrace(id: &str) -> Vec<(f64, f64, usize)> {
+    let c = case(id);
+    let n = c["repeat"].as_u64().expect("repeat") as usize;
+    let ours = radc(&c);
+    let mut out = Vec::new();
+    for (k, stats) in c["stats"].as_array().expect("stats").iter().enumerate() {
+        let red = numbers(&stats[0]);
+        let (mt, st) = (red[0], red[1]);
+        let block = &ours[k * n..(k + 1) * n];
+        let mo = block.iter().sum::<f64>() / n as f64;
+        let so = (block.iter().map(|x| (x - mo).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt();
+        let se = ((so * so + st * st) / n as f64).sqrt();
+        assert!(
+            (mo - mt).abs() <= 4.5 * se + 1e-9,
+            "{id} ray {k}: radc mean {mo} (sd {so}) vs rtrace {mt} (sd {st})"
+        );
+        assert!(
+            so <= 2.0 * st + 1e-9 && so >= 0.5 * st - 1e-9,
+            "{id} ray {k}: radc sd {so} vs rtrace {st}"
+        );
+        out.push((mo, so, n));
+    }
+    out
+}
