@@ -252,7 +252,7 @@ impl<'m> CurveEval<'m> {
         match &mut self.engine {
             Engine::Interpreter(ev) => ev
                 .eval_top(&out.body, &mut NoInput)
-                .map_err(|e| GenError::Invalid(format!("calcomp: {e}"))),
+                .map_err(|e| GenError::Plain(e.to_string())),
             Engine::Jit(_) => Err(GenError::Invalid("missing curve output".into())),
         }
     }

@@ -519,7 +519,7 @@ fn vector(p: &[f64; 3]) -> String {
 
 /// `loaddata()`: `(m+1)(n+1)` values per coordinate with the border, or `mn` without.
 fn load_data(text: &str, name: &str, m: usize, n: usize, size: usize) -> Result<Data, GenError> {
-    let bad = || GenError::Invalid(format!("{name}: bad number of data points"));
+    let bad = || GenError::Plain(format!("{name}: bad number of data points"));
     let wanted = (m + 1) * (n + 1) * size;
     let mut words = Stream::new(text);
     let mut values = Vec::with_capacity(wanted.min(1 << 20));

@@ -261,19 +261,19 @@ impl Lowering<'_> {
             return;
         }
         match self.commands.expand(&c.text, c.span.file, depth + 1) {
-            Expansion::Text { file, text } => {
-                let (syntax, mut diags) = super::parse(file, &text);
-                let first = self.diags.len();
-                self.diags.append(&mut diags);
-                self.items(&syntax.items, warn_unused, depth + 1);
-                for d in &mut self.diags[first..] {
-                    if d.span.file == file {
-                        d.labels.push(crate::diagnostic::Label {
-                            span: c.span,
-                            message: "in the output of this command".into(),
-                        });
-                    }
+            Expansion::Text { file, text } => self.output(c, file, &text, warn_unused, depth),
+            Expansion::Partial {
+                file,
+                text,
+                message,
+                hint,
+            } => {
+                self.output(c, file, &text, warn_unused, depth);
+                let mut d = Diagnostic::new(codes::W0306, c.span, message);
+                if let Some(h) = hint {
+                    d = d.with_hint(h);
                 }
+                self.diags.push(d);
             }
             Expansion::NotExpanded { reason } => self.diags.push(
                 Diagnostic::new(
@@ -296,6 +296,22 @@ impl Lowering<'_> {
                     d = d.with_hint(h);
                 }
                 self.diags.push(d);
+            }
+        }
+    }
+
+    /// Lowers a command's output where the command stands.
+    fn output(&mut self, c: &Command, file: FileId, text: &str, warn_unused: bool, depth: u32) {
+        let (syntax, mut diags) = super::parse(file, text);
+        let first = self.diags.len();
+        self.diags.append(&mut diags);
+        self.items(&syntax.items, warn_unused, depth + 1);
+        for d in &mut self.diags[first..] {
+            if d.span.file == file {
+                d.labels.push(crate::diagnostic::Label {
+                    span: c.span,
+                    message: "in the output of this command".into(),
+                });
             }
         }
     }
