@@ -1855,6 +1855,12 @@ mod tests {
                     message: "it failed".into(),
                     hint: None,
                 },
+                ["halfway", name] => Expansion::Partial {
+                    file,
+                    text: format!("paint sphere {name} 0 0 4 0 0 0 1\nundefined sphere y\n"),
+                    message: "it failed halfway".into(),
+                    hint: Some("the program's own message".into()),
+                },
                 _ => Expansion::NotExpanded {
                     reason: "not a generator".into(),
                 },
@@ -1886,5 +1892,26 @@ mod tests {
             diags.iter().map(|d| d.code.id).collect::<Vec<_>>(),
             vec!["E0307"]
         );
+    }
+
+    #[test]
+    fn output_before_a_failure_is_lowered_and_the_failure_warns_on_the_command() {
+        let text = format!("{PAINT}\n!halfway half\n");
+        let (scene, diags) = check_with_commands(&text);
+        assert!(scene.prims.iter().any(|p| p.name == "half"));
+        let failure = diags
+            .iter()
+            .find(|d| d.code.id == "W0306")
+            .expect("a command-failed warning");
+        assert_eq!(failure.span.file, FileId(0));
+        let at = failure.span.start as usize..failure.span.end as usize;
+        assert_eq!(&text[at], "!halfway half");
+        assert_eq!(failure.hint.as_deref(), Some("the program's own message"));
+        // The truncated primitive is reported in the output, pointing back at the line.
+        let truncated = diags
+            .iter()
+            .find(|d| d.span.file != FileId(0))
+            .expect("a diagnostic inside the output");
+        assert_eq!(truncated.labels[0].span, failure.span);
     }
 }
