@@ -59,10 +59,10 @@ pub(crate) fn run_builtin_at(
         let result = match name {
             "genbox" => whole(crate::genbox(args)),
             "genprism" => whole(crate::genprism(args, &mut stage_host)),
-            "genrev" => whole(crate::genrev(args, &mut stage_host)),
+            "genrev" => crate::genrev(args, &mut stage_host),
             "gensky" => whole(crate::gensky(args, &mut stage_host)),
-            "gensurf" => whole(crate::gensurf(args, &mut stage_host)),
-            "genworm" => whole(crate::genworm(args, &mut stage_host)),
+            "gensurf" => crate::gensurf(args, &mut stage_host),
+            "genworm" => crate::genworm(args, &mut stage_host),
             "xform" => crate::xform::nested(args, &mut stage_host, depth),
             _ => return None,
         };

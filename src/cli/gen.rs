@@ -22,9 +22,9 @@ pub fn genworm(args: &[String]) -> ExitCode {
             let mut host = FileHost::default();
             radc_generators::genworm(&args, &mut host)
         },
-        |e| e,
+        |e| Failure::new("genworm", e),
     );
-    finish("genworm", result)
+    report(result)
 }
 
 pub fn genrev(args: &[String]) -> ExitCode {
@@ -34,9 +34,9 @@ pub fn genrev(args: &[String]) -> ExitCode {
             let mut host = FileHost::default();
             radc_generators::genrev(&args, &mut host)
         },
-        |e| e,
+        |e| Failure::new("genrev", e),
     );
-    finish("genrev", result)
+    report(result)
 }
 
 pub fn gensurf(args: &[String]) -> ExitCode {
@@ -46,9 +46,9 @@ pub fn gensurf(args: &[String]) -> ExitCode {
             let mut host = FileHost::default();
             radc_generators::gensurf(&args, &mut host)
         },
-        |e| e,
+        |e| Failure::new("gensurf", e),
     );
-    finish("gensurf", result)
+    report(result)
 }
 
 /// calcomp recursion is legal and can be deep (genworm's curves, or a genworm run by a

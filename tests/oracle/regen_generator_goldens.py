@@ -82,6 +82,10 @@ CASES = [
     ("gensky-zone-beats-m", "gensky", "11 11 11GMT -a 51.5 -o 0.1 -m 30", None),
     ("gensky-night", "gensky", "1 1 2", None),
     ("gensky-err-month", "gensky", "13 1 12", None),
+    # calcomp errors partway along a curve: what was written up to there is kept
+    ("gensurf-err-late-undefined", "gensurf", "m s s t if(s-.6,x,0) 4 2", None),
+    ("genworm-err-late-undefined", "genworm", "m w t t*2 if(t-.5,x,0) .1 4", None),
+    ("genrev-err-late-undefined", "genrev", "m r t if(t-.5,x,1) 4", None),
     ("gensky-err-zone", "gensky", "3 21 12XYZ", None),
     ("gensky-err-solar-zone", "gensky", "3 21 +12PST", None),
     ("gensky-err-count", "gensky", "3 21", None),
@@ -192,7 +196,6 @@ CASES = [
     ("xform-nested-empty", "xform", "nested-empty.rad", None),
     ("xform-empty", "xform", "empty.rad", None),
     ("xform-only-comment", "xform", "only-comment.rad", None),
-    ("gensky-err-month", "gensky", "13 1 12", None),
     ("gensurf-err-usage", "gensurf", "m s 1 2", None),
     ("genrev-err-usage", "genrev", "m r t 1", None),
     ("genworm-err-usage", "genworm", "m w t t t", None),
