@@ -277,3 +277,83 @@ fn generator_lines_are_expanded_and_pipelines_work() {
     assert_eq!(diags[1]["file"], "!genbox pant box2 1 1 1");
     assert_eq!(diags[1]["labels"][0]["line"], 3);
 }
+
+#[test]
+fn failing_xform_lines_warn_on_the_line_and_keep_what_was_expanded() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "part.rad", "glos sphere a 0 0 4 0 0 0 1\n");
+    write(
+        dir.path(),
+        "nest.rad",
+        "!xform -t 1 0 0 missing.rad\nglas sphere b 0 0 4 0 0 0 1\n",
+    );
+    write(
+        dir.path(),
+        "scene.rad",
+        &format!("{MATERIAL}!xform part.rad missing.rad\n!xform -n n nest.rad\n"),
+    );
+    let out = radc(&["check", "--format", "json", "scene.rad"], dir.path());
+    let diags = json_lines(&out);
+    let summary: Vec<(&str, &str, u64)> = diags
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap(),
+                d["file"].as_str().unwrap(),
+                d["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    // xform wrote part.rad's sphere before failing on the missing file: the sphere is
+    // checked (its modifier is undefined), and the failure is a warning on line 2.
+    // nest.rad's own failing command only warns inside xform ("bad status"), so its
+    // sphere is read too, and the warning lands on line 3.
+    assert!(summary.contains(&("W0306", "scene.rad", 2)), "{summary:?}");
+    assert!(summary.contains(&("W0306", "scene.rad", 3)), "{summary:?}");
+    let undefined: Vec<&serde_json::Value> =
+        diags.iter().filter(|d| d["code"] == "E0301").collect();
+    assert_eq!(undefined.len(), 2, "{summary:?}");
+    assert_eq!(undefined[0]["file"], "!xform part.rad missing.rad");
+    assert_eq!(undefined[0]["labels"][0]["line"], 2);
+    assert_eq!(undefined[1]["file"], "!xform -n n nest.rad");
+    assert_eq!(undefined[1]["labels"][0]["line"], 3);
+    let status = diags
+        .iter()
+        .find(|d| d["code"] == "W0306" && d["line"] == 3)
+        .unwrap();
+    assert!(
+        status["message"]
+            .as_str()
+            .unwrap()
+            .contains("bad status from \"!xform -t 1 0 0 missing.rad\""),
+        "{status}"
+    );
+    assert!(
+        status["hint"]
+            .as_str()
+            .unwrap()
+            .contains("xform: cannot find file \"missing.rad\""),
+        "{status}"
+    );
+}
+
+#[test]
+fn include_cycles_through_xform_are_errors_on_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "a.rad",
+        &format!("{MATERIAL}paint sphere s 0 0 4 0 0 0 1\n!xform -t 1 0 0 b.rad\n"),
+    );
+    write(dir.path(), "b.rad", "!xform -rz 10 a.rad\n");
+    write(dir.path(), "self.rad", "!xform -s 2 self.rad\n");
+    for (scene, line) in [("a.rad", 3), ("self.rad", 1)] {
+        let out = radc(&["check", "--format", "json", scene], dir.path());
+        assert_eq!(out.status.code(), Some(1), "{scene}");
+        let diags = json_lines(&out);
+        let cycle: Vec<_> = diags.iter().filter(|d| d["code"] == "E0307").collect();
+        assert_eq!(cycle.len(), 1, "{scene}: {diags:?}");
+        assert_eq!(cycle[0]["file"], scene);
+        assert_eq!(cycle[0]["line"], line);
+    }
+}

@@ -1,5 +1,8 @@
-//! Differential tests: `radc genbox|genprism|xform` against what Radiance's programs
-//! printed for the same arguments (goldens from tests/oracle/regen_generator_goldens.py).
+//! Differential tests: `radc genbox|genprism|genrev|gensky|gensurf|genworm|xform`
+//! against what Radiance's programs printed for the same arguments (goldens from
+//! tests/oracle/regen_generator_goldens.py): the exit status, standard output (for a
+//! failure, what was written before it), and standard error, where radc may add its
+//! own detail on indented `error[...]` and `hint:` lines after Radiance's.
 //!
 //! Each case must match its golden text exactly; when it does not, the comparison is
 //! repeated primitive by primitive with numbers within 1e-6 relative, so the failure
@@ -18,6 +21,7 @@ struct Case {
     args: Vec<String>,
     stdin: Option<String>,
     status: i64,
+    stderr: String,
 }
 
 fn cases() -> Vec<Case> {
@@ -36,11 +40,12 @@ fn cases() -> Vec<Case> {
                 .collect(),
             stdin: c["stdin"].as_str().map(str::to_string),
             status: c["status"].as_i64().expect("status"),
+            stderr: c["stderr"].as_str().expect("stderr").to_string(),
         })
         .collect()
 }
 
-fn run_radc(case: &Case) -> (bool, String, String) {
+fn run_radc(case: &Case) -> (i32, String, String) {
     let inputs = data_dir().join("inputs");
     let stdin = match &case.stdin {
         Some(name) => Stdio::from(std::fs::File::open(inputs.join(name)).expect("stdin file")),
@@ -55,10 +60,20 @@ fn run_radc(case: &Case) -> (bool, String, String) {
         .output()
         .expect("radc runs");
     (
-        out.status.success(),
+        out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
+}
+
+/// radc's standard error without its own additions (indented `error[...]` and
+/// `hint:` lines).
+fn radiance_lines(stderr: &str) -> String {
+    stderr
+        .lines()
+        .filter(|l| !l.starts_with("  error[") && !l.starts_with("  hint: "))
+        .map(|l| format!("{l}\n"))
+        .collect()
 }
 
 /// Splits scene text into primitives (blocks starting after a blank line) of words.
@@ -109,17 +124,21 @@ fn generators_match_radiance() {
     assert!(cases.len() >= 40, "only {} cases", cases.len());
     let mut failures = Vec::new();
     for case in &cases {
-        let (ok, got, stderr) = run_radc(case);
+        let (status, got, stderr) = run_radc(case);
         let label = format!("radc {} {}", case.program, case.args.join(" "));
-        if case.status != 0 {
-            if ok {
-                failures.push(format!("{label}: Radiance fails here, radc succeeded"));
-            }
+        if i64::from(status) != case.status {
+            failures.push(format!(
+                "{label}: exit status {status}, Radiance's {}; stderr: {}",
+                case.status,
+                stderr.trim()
+            ));
             continue;
         }
-        if !ok {
-            failures.push(format!("{label}: radc failed: {}", stderr.trim()));
-            continue;
+        if radiance_lines(&stderr) != case.stderr {
+            failures.push(format!(
+                "{label}: stderr differs:\n  want {:?}\n  got  {:?}",
+                case.stderr, stderr
+            ));
         }
         let golden = data_dir().join(format!("{}.out", case.id));
         let want = std::fs::read_to_string(&golden).expect("golden output");

@@ -5,7 +5,7 @@
 //! process and no shell. A line with shell syntax (pipes, redirection, variables,
 //! globs) or another program is not a built-in: the caller decides what to do.
 
-use crate::{GenError, Host};
+use crate::{Failure, GenError, Host};
 
 /// The programs radc runs itself.
 pub const BUILTINS: &[&str] = &[
@@ -15,9 +15,15 @@ pub const BUILTINS: &[&str] = &[
 /// The output of `command` (the text after `!`) if it is a plain invocation of a
 /// built-in generator, or a pipeline of them (`genbox m b 1 1 1 | xform -rz 90`, each
 /// stage reading the previous one's output as standard input); `None` if it is not.
-/// Files it names are read through `host`.
-pub fn run_builtin(command: &str, host: &mut dyn Host) -> Option<Result<String, GenError>> {
+/// Files it names are read through `host`. A failing stage ends the pipeline with what
+/// it wrote before failing.
+pub fn run_builtin(command: &str, host: &mut dyn Host) -> Option<Result<String, Failure>> {
     run_builtin_at(command, host, 0)
+}
+
+/// The program a command line runs (its first word, without a folder), for messages.
+pub fn program_of(command: &str) -> &str {
+    program_name(command.split_whitespace().next().unwrap_or("command"))
 }
 
 /// [`run_builtin`] from inside xform, `depth` nested commands deep.
@@ -25,7 +31,7 @@ pub(crate) fn run_builtin_at(
     command: &str,
     host: &mut dyn Host,
     depth: usize,
-) -> Option<Result<String, GenError>> {
+) -> Option<Result<String, Failure>> {
     let stages = split_pipeline(command)
         .iter()
         .map(|stage| simple_words(stage))
@@ -48,11 +54,13 @@ pub(crate) fn run_builtin_at(
             host: &mut *host,
             stdin: piped.take(),
         };
-        let result = match program_name(program) {
-            "genbox" => crate::genbox(args),
-            "genprism" => crate::genprism(args, &mut stage_host),
+        let name = program_name(program);
+        let whole = |r: Result<String, GenError>| r.map_err(|e| Failure::new(name, e));
+        let result = match name {
+            "genbox" => whole(crate::genbox(args)),
+            "genprism" => whole(crate::genprism(args, &mut stage_host)),
             "genrev" => crate::genrev(args, &mut stage_host),
-            "gensky" => crate::gensky(args),
+            "gensky" => whole(crate::gensky(args, &mut stage_host)),
             "gensurf" => crate::gensurf(args, &mut stage_host),
             "genworm" => crate::genworm(args, &mut stage_host),
             "xform" => crate::xform::nested(args, &mut stage_host, depth),
@@ -60,7 +68,7 @@ pub(crate) fn run_builtin_at(
         };
         match result {
             Ok(text) => piped = Some(text),
-            Err(e) => return Some(Err(e)),
+            Err(f) => return Some(Err(f)),
         }
     }
     Some(Ok(piped.unwrap_or_default()))
@@ -89,8 +97,12 @@ impl Host for Piped<'_> {
         }
     }
 
-    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
+    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, Failure> {
         self.host.run_command(command, dir)
+    }
+
+    fn warn(&mut self, line: &str) {
+        self.host.warn(line);
     }
 }
 

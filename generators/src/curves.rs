@@ -1,12 +1,15 @@
 //! The calcomp side of genworm and genrev: `-e` statements and `-f` files, then one
 //! function of `t` per curve (`X`SYS`(t)=...`), evaluated with `radc_lang::cal` at the
-//! parameter values the generator asks for.
+//! parameter values the generator asks for: compiled by the Cranelift JIT (`radc_jit`),
+//! or interpreted when the JIT declines the program.
 //!
 //! As in Radiance, `PI` and the spline functions `hermite`, `bezier` and `bspline`
 //! are predefined, constants fold while parsing, and everything is evaluated within
 //! one evaluation clock (so `=` variables keep their first value).
 
 use crate::GenError;
+use radc_jit::compile::Entry;
+use radc_jit::{Compiled, Context, Jit, JitError};
 use radc_lang::FileId;
 use radc_lang::cal::eval::{Evaluator, NoInput};
 use radc_lang::cal::ir::DefId;
@@ -29,6 +32,8 @@ pub(crate) struct CurveProgram {
     module: Module,
     /// The parameters' variables (`S`SYS``, `T`SYS``), set before each evaluation.
     parameters: Vec<DefId>,
+    /// Their names, the JIT's host variables.
+    parameter_names: Vec<String>,
     /// Output channels 1..=curves hold the curves at the parameters.
     curves: u32,
     /// Channels of expressions evaluated once (segment counts).
@@ -45,6 +50,7 @@ impl CurveProgram {
         let mut p = CurveProgram {
             module,
             parameters: Vec::new(),
+            parameter_names: Vec::new(),
             curves: 0,
             next_channel: FIRST_EXPRESSION_CHANNEL,
         };
@@ -124,6 +130,7 @@ impl CurveProgram {
                     .and_then(|s| self.module.current_def(s))
             })
             .collect();
+        self.parameter_names = variables;
         Ok(())
     }
 
@@ -140,30 +147,122 @@ impl CurveProgram {
         self.module.optimize();
     }
 
+    /// Evaluation of the curves: compiled by the JIT when it accepts the program,
+    /// else through the interpreter. Both compute the same bits (the JIT is built to
+    /// agree with the interpreter), so the choice never shows in the output.
     pub fn evaluator(&self) -> CurveEval<'_> {
+        let engine = match self.jit_compile() {
+            Ok((compiled, entries, hosts)) => {
+                let ctx = compiled.context();
+                Engine::Jit(Box::new(JitCurves {
+                    compiled,
+                    ctx,
+                    entries,
+                    hosts,
+                }))
+            }
+            Err(_) => return self.interpreted(),
+        };
         CurveEval {
             program: self,
-            ev: Evaluator::new(&self.module),
+            engine,
+            parameters: vec![0.0; self.parameters.len()],
         }
     }
+
+    /// Evaluation through the interpreter only.
+    pub fn interpreted(&self) -> CurveEval<'_> {
+        CurveEval {
+            program: self,
+            engine: Engine::Interpreter(Evaluator::new(&self.module)),
+            parameters: vec![0.0; self.parameters.len()],
+        }
+    }
+
+    /// The curves' output channels as JIT entries, the parameter variables as host
+    /// variables (the interpreter's `set_value` overrides).
+    #[allow(clippy::type_complexity)]
+    fn jit_compile(&self) -> Result<(Compiled, Vec<Entry>, Vec<usize>), JitError> {
+        let names: Vec<String> = (1..=self.curves).map(|c| format!("${c}")).collect();
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let parameters: Vec<&str> = self.parameter_names.iter().map(String::as_str).collect();
+        let compiled = Jit::new()
+            .with_host_variables(&parameters)
+            .compile(&self.module, &names)?;
+        let entries = names
+            .iter()
+            .map(|n| {
+                compiled
+                    .entry(n)
+                    .ok_or(JitError::UnknownEntry(n.to_string()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let hosts = parameters
+            .iter()
+            .map(|n| {
+                compiled
+                    .host_index(n)
+                    .ok_or(JitError::UnknownEntry(n.to_string()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok((compiled, entries, hosts))
+    }
+}
+
+/// What evaluates the curves.
+enum Engine<'m> {
+    Jit(Box<JitCurves>),
+    Interpreter(Evaluator<'m>),
+}
+
+struct JitCurves {
+    compiled: Compiled,
+    ctx: Context,
+    /// Curve `k` is `entries[k - 1]`.
+    entries: Vec<Entry>,
+    /// The context's host slot of each parameter.
+    hosts: Vec<usize>,
 }
 
 pub(crate) struct CurveEval<'m> {
     program: &'m CurveProgram,
-    ev: Evaluator<'m>,
+    engine: Engine<'m>,
+    /// The parameters last set, to replay into the interpreter if the JIT fails.
+    parameters: Vec<f64>,
 }
 
-impl CurveEval<'_> {
+impl<'m> CurveEval<'m> {
     fn channel(&mut self, channel: u32) -> Result<f64, GenError> {
+        if let Engine::Jit(jit) = &mut self.engine {
+            let entry = jit.entries.get(channel as usize - 1).copied();
+            match entry.map(|e| jit.compiled.eval_no_input(e, &mut jit.ctx)) {
+                Some(Ok(v)) => return Ok(v),
+                // A failure (a calcomp error, or the JIT's own stack budget running
+                // out before the interpreter's depth limit) is reported as the
+                // interpreter reports it: from here on the interpreter evaluates.
+                _ => self.fall_back(),
+            }
+        }
         let out = self
             .program
             .module
             .outputs()
             .get(&channel)
             .ok_or_else(|| GenError::Invalid("missing curve output".into()))?;
-        self.ev
-            .eval_top(&out.body, &mut NoInput)
-            .map_err(|e| GenError::Invalid(format!("calcomp: {e}")))
+        match &mut self.engine {
+            Engine::Interpreter(ev) => ev
+                .eval_top(&out.body, &mut NoInput)
+                .map_err(|e| GenError::Plain(e.to_string())),
+            Engine::Jit(_) => Err(GenError::Invalid("missing curve output".into())),
+        }
+    }
+
+    fn fall_back(&mut self) {
+        let mut ev = Evaluator::new(&self.program.module);
+        for (&def, &value) in self.program.parameters.iter().zip(&self.parameters) {
+            ev.set_value(def, value);
+        }
+        self.engine = Engine::Interpreter(ev);
     }
 
     /// Every curve at the given parameter values (`funvalue(name, n, args)` for each).
@@ -171,9 +270,7 @@ impl CurveEval<'_> {
         if parameters.len() != self.program.parameters.len() {
             return Err(GenError::Invalid("curves not defined".into()));
         }
-        for (&def, &value) in self.program.parameters.iter().zip(parameters) {
-            self.ev.set_value(def, value);
-        }
+        self.set(parameters);
         (1..=self.program.curves).map(|c| self.channel(c)).collect()
     }
 
@@ -185,8 +282,95 @@ impl CurveEval<'_> {
 
     /// Sets the parameters without evaluating.
     pub fn set(&mut self, parameters: &[f64]) {
-        for (&def, &value) in self.program.parameters.iter().zip(parameters) {
-            self.ev.set_value(def, value);
+        for (slot, &value) in self.parameters.iter_mut().zip(parameters) {
+            *slot = value;
         }
+        match &mut self.engine {
+            Engine::Jit(jit) => {
+                for (&k, &value) in jit.hosts.iter().zip(parameters) {
+                    jit.ctx.set_host(k, value);
+                }
+            }
+            Engine::Interpreter(ev) => {
+                for (&def, &value) in self.program.parameters.iter().zip(parameters) {
+                    ev.set_value(def, value);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn program(defs: &str, curves: &[(&str, &str)]) -> CurveProgram {
+        let mut p = CurveProgram::new().expect("splines compile");
+        p.compile(defs, "-e").expect("definitions compile");
+        p.define(&["s", "t"], curves, &[]).expect("curves compile");
+        p.optimize();
+        p
+    }
+
+    fn is_jit(ev: &CurveEval<'_>) -> bool {
+        matches!(ev.engine, Engine::Jit(_))
+    }
+
+    #[test]
+    fn the_jit_evaluates_curves_and_agrees_with_the_interpreter() {
+        let p = program(
+            "f(x) = if(x - .5, bspline(0, 1, 3, 2, x), hermite(1, 2, x, -x, x*x));\
+             k(s, t) = sin(PI*s) * exp(-t); fact(n) = if(n - 1.5, n * fact(n - 1), 1);",
+            &[
+                ("X", "f(s) + k(s, t)"),
+                ("Y", "bezier(s, t, 1, 2, t)/t"),
+                ("Z", "fact(s*9)"),
+            ],
+        );
+        let (mut jit, mut interp) = (p.evaluator(), p.interpreted());
+        assert!(is_jit(&jit));
+        assert!(!is_jit(&interp));
+        for i in 0..=20 {
+            let (s, t) = (i as f64 / 20.0, 1.0 - i as f64 / 20.0);
+            let a = jit.at(&[s, t]).expect("jit evaluates");
+            let b = interp.at(&[s, t]).expect("interpreter evaluates");
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&a), bits(&b), "at s={s} t={t}");
+        }
+    }
+
+    #[test]
+    fn a_jit_failure_is_the_interpreters_error() {
+        let p = program("", &[("X", "s"), ("Y", "undefined_thing(t)"), ("Z", "1")]);
+        let mut jit = p.evaluator();
+        let got = jit.at(&[0.5, 0.5]);
+        let want = p.interpreted().at(&[0.5, 0.5]);
+        assert!(want.is_err());
+        assert_eq!(got, want);
+        assert!(!is_jit(&jit), "the interpreter takes over after a failure");
+    }
+
+    #[test]
+    fn the_interpreter_takes_over_when_the_jit_runs_out_of_stack() {
+        // Recursion 15,000 deep (within the interpreter's 20,000-call limit) outgrows
+        // the JIT's 1 MB native stack budget: the interpreter, on a thread with a deep
+        // stack as the CLI gives it, finishes the evaluation.
+        let worker = std::thread::Builder::new().stack_size(512 << 20).spawn(|| {
+            let p = program(
+                "r(n) = if(n, 1 + r(n - 1), 0);",
+                &[("X", "r(s)"), ("Y", "t"), ("Z", "0")],
+            );
+            let mut ev = p.evaluator();
+            let small = ev.at(&[20.0, 1.0]);
+            let jit_after_small = is_jit(&ev);
+            let deep = ev.at(&[15000.0, 1.0]);
+            (small, jit_after_small, deep, is_jit(&ev))
+        });
+        let (small, jit_after_small, deep, jit_after_deep) =
+            worker.expect("thread starts").join().expect("no panic");
+        assert_eq!(small, Ok(vec![20.0, 1.0, 0.0]));
+        assert!(jit_after_small);
+        assert_eq!(deep, Ok(vec![15000.0, 1.0, 0.0]));
+        assert!(!jit_after_deep);
     }
 }

@@ -45,7 +45,21 @@ fn normal(z0: f64, r0: f64, z1: f64, r1: f64) -> (f64, f64) {
 
 /// The scene genrev prints for `args` (the words after `genrev`); `-f` files come
 /// through `host`.
-pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
+/// On failure (a calcomp error at some point of the curve), what was written up to
+/// there, as the C program leaves it on standard output.
+pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, crate::Failure> {
+    let mut out = String::new();
+    match write(args, host, &mut out) {
+        Ok(()) => Ok(out),
+        Err(error) => Err(crate::Failure {
+            program: "genrev".into(),
+            partial: out,
+            error,
+        }),
+    }
+}
+
+fn write(args: &[String], host: &mut dyn Host, out: &mut String) -> Result<(), GenError> {
     let usage = || GenError::Usage(USAGE.to_string());
     if args.len() < 5 {
         return Err(usage());
@@ -79,7 +93,7 @@ pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, GenError> 
     let mut ev = program.evaluator();
     let (material, name) = (&args[0], &args[1]);
     let modifier = if smooth { "Phong" } else { material.as_str() };
-    let mut out = command_comment("genrev", args);
+    *out = command_comment("genrev", args);
     let at = |ev: &mut crate::curves::CurveEval<'_>, t: f64| -> Result<(f64, f64), GenError> {
         let v = ev.at(&[t])?;
         Ok((v[0], v[1]))
@@ -151,5 +165,5 @@ pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, GenError> 
         (lastnz, lastnr) = (nz, nr);
         (nz, nr) = (nextnz, nextnr);
     }
-    Ok(out)
+    Ok(())
 }

@@ -94,10 +94,14 @@ struct Sky {
     ground_reflectance: f64,
     solar: f64,
     solar_given: Given,
+    /// Lines for standard error.
+    warnings: Vec<&'static str>,
 }
 
 /// The sky gensky prints for `args` (the words after `gensky`).
-pub fn gensky(args: &[String]) -> Result<String, GenError> {
+/// gensky's warning (the sun moved down from the zenith) goes to `host` as well as
+/// into the output's comments, as the C program prints it on both.
+pub fn gensky(args: &[String], host: &mut dyn crate::Host) -> Result<String, GenError> {
     let usage = |why: &str| GenError::Usage(format!("{why}\n{USAGE}"));
     let mut sky = Sky {
         site: Site {
@@ -120,6 +124,7 @@ pub fn gensky(args: &[String]) -> Result<String, GenError> {
         ground_reflectance: 0.2,
         solar: 0.0,
         solar_given: Given::No,
+        warnings: Vec::new(),
     };
     if args.len() == 1 && args[0] == "-defaults" {
         return Ok(sky.defaults());
@@ -199,6 +204,9 @@ pub fn gensky(args: &[String]) -> Result<String, GenError> {
     let mut out = command_comment("gensky", args);
     let derived = sky.compute(&mut out);
     sky.print(&derived, &mut out);
+    for w in &sky.warnings {
+        host.warn(w);
+    }
     Ok(out)
 }
 
@@ -243,9 +251,15 @@ impl Sky {
                 self.site.meridian = f64::from(meridian as f32) * (PI / 180.0);
                 Ok(true)
             }
+            // gensky lists the zones it knows after the complaint.
             None => Err(GenError::Invalid(format!(
-                "unknown time zone: {}",
-                String::from_utf8_lossy(zone)
+                "unknown time zone: {}\nKnown time zones:\n\t{}",
+                String::from_utf8_lossy(zone),
+                TIME_ZONES
+                    .iter()
+                    .map(|(name, _)| *name)
+                    .collect::<Vec<_>>()
+                    .join(" ")
             ))),
         }
     }
@@ -284,6 +298,8 @@ impl Sky {
         }
         if !self.overcast() && self.altitude > 87.0 * PI / 180.0 {
             out.push_str("# warning - sun too close to zenith, reducing altitude to 87 degrees\n");
+            self.warnings
+                .push("gensky: warning - sun too close to zenith, reducing altitude to 87 degrees");
             self.altitude = 87.0 * PI / 180.0;
         }
         let (alt, azi) = (self.altitude, self.azimuth);

@@ -54,7 +54,21 @@ enum Source {
 
 /// The scene gensurf prints for `args` (the words after `gensurf`); data files, `-f`
 /// files and `-` (standard input) come through `host`.
-pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
+/// On failure (a calcomp error at some point of the curve), what was written up to
+/// there, as the C program leaves it on standard output.
+pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, crate::Failure> {
+    let mut out = String::new();
+    match write(args, host, &mut out) {
+        Ok(()) => Ok(out),
+        Err(error) => Err(crate::Failure {
+            program: "gensurf".into(),
+            partial: out,
+            error,
+        }),
+    }
+}
+
+fn write(args: &[String], host: &mut dyn Host, out: &mut String) -> Result<(), GenError> {
     let usage = || GenError::Usage(USAGE.to_string());
     if args.len() < 7 {
         return Err(usage());
@@ -114,7 +128,7 @@ pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
             Source::Functions
         }
     };
-    let mut out = command_comment("gensurf", args);
+    *out = command_comment("gensurf", args);
     program.optimize();
     let mut surface = Surface {
         ev: program.evaluator(),
@@ -130,10 +144,10 @@ pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
         name,
         nverts: 0,
         nout: 0,
-        out: &mut out,
+        out,
     };
     surface.write(m)?;
-    Ok(out)
+    Ok(())
 }
 
 struct Surface<'a, 'm> {
@@ -519,7 +533,7 @@ fn vector(p: &[f64; 3]) -> String {
 
 /// `loaddata()`: `(m+1)(n+1)` values per coordinate with the border, or `mn` without.
 fn load_data(text: &str, name: &str, m: usize, n: usize, size: usize) -> Result<Data, GenError> {
-    let bad = || GenError::Invalid(format!("{name}: bad number of data points"));
+    let bad = || GenError::Plain(format!("{name}: bad number of data points"));
     let wanted = (m + 1) * (n + 1) * size;
     let mut words = Stream::new(text);
     let mut values = Vec::with_capacity(wanted.min(1 << 20));

@@ -16,7 +16,21 @@ const FTINY: f64 = 1e-6;
 
 /// The scene genworm prints for `args` (the words after `genworm`); `-f` files come
 /// through `host`.
-pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
+/// On failure (a calcomp error at some point of the curve), what was written up to
+/// there, as the C program leaves it on standard output.
+pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, crate::Failure> {
+    let mut out = String::new();
+    match write(args, host, &mut out) {
+        Ok(()) => Ok(out),
+        Err(error) => Err(crate::Failure {
+            program: "genworm".into(),
+            partial: out,
+            error,
+        }),
+    }
+}
+
+fn write(args: &[String], host: &mut dyn Host, out: &mut String) -> Result<(), GenError> {
     let usage = || GenError::Usage(USAGE.to_string());
     if args.len() < 7 {
         return Err(usage());
@@ -47,7 +61,7 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
     }
     program.optimize();
     let mut ev = program.evaluator();
-    let mut out = command_comment("genworm", args);
+    *out = command_comment("genworm", args);
     let (material, name) = (&args[0], &args[1]);
     let (mut lastp, mut lastr) = ([0.0; 3], 0.0);
     // The oracle's genworm is built with -ffast-math, which turns `i/nseg` into
@@ -60,8 +74,8 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
         if i > 0 {
             if lastr <= r + FTINY && lastr >= r - FTINY {
                 out.push_str(&format!("\n{material} cylinder {name}.c{i}\n0\n0\n7\n"));
-                line(&mut out, &lastp);
-                line(&mut out, &p);
+                line(out, &lastp);
+                line(out, &p);
                 out.push_str(&format!("{}\n", g(r, 18, 12)));
             } else {
                 out.push_str(&format!("\n{material} cone {name}.c{i}\n0\n0\n8\n"));
@@ -69,8 +83,8 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
                 let along = |base: &[f64; 3], radius: f64| -> [f64; 3] {
                     std::array::from_fn(|k| base[k] + f * radius * (p[k] - lastp[k]))
                 };
-                line(&mut out, &along(&lastp, lastr));
-                line(&mut out, &along(&p, r));
+                line(out, &along(&lastp, lastr));
+                line(out, &along(&p, r));
                 let f = 1.0 - (lastr - r) * f;
                 let f = if f <= 0.0 { 0.0 } else { f.sqrt() };
                 out.push_str(&format!("{} {}\n", g(f * lastr, 18, 12), g(f * r, 18, 12)));
@@ -86,7 +100,7 @@ pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, GenError>
         lastp = p;
         lastr = r;
     }
-    Ok(out)
+    Ok(())
 }
 
 /// More segments than this are refused rather than filling memory.

@@ -17,6 +17,7 @@
 
 pub mod command;
 mod curves;
+pub mod expansion;
 pub mod genbox;
 pub mod genprism;
 pub mod genrev;
@@ -48,26 +49,88 @@ pub enum GenError {
     /// The arguments parse but cannot be generated (too few vertices, ...).
     Invalid(String),
     /// A transform word is wrong: the diagnostic points at it (spans are byte offsets
-    /// into the arguments joined by single spaces).
-    Transform(Box<radc_lang::Diagnostic>),
+    /// into the arguments joined by single spaces); `at` is the option word xform
+    /// names in its "command line error at" message.
+    Transform {
+        diagnostic: Box<radc_lang::Diagnostic>,
+        at: String,
+    },
+    /// A complaint the C program prints as it is, without its name (calcomp's
+    /// "x: undefined variable", gensurf's "file: bad number of data points").
+    Plain(String),
     /// The input scene cannot be read (unknown type, bad argument list, ...).
     Scene(String),
     /// The host could not supply a file, standard input or a command's output.
     Host(String),
     /// A Radiance option radc does not reproduce yet.
     Unsupported(String),
+    /// `!` commands or argument files nested too deep: a file that includes itself.
+    /// Fatal however deep it happens (Radiance would recurse until it runs out).
+    Nesting(String),
 }
 
 impl fmt::Display for GenError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             GenError::Usage(u) => write!(f, "usage: {u}"),
-            GenError::Transform(d) => write!(f, "{}: {}", d.code.id, d.message),
+            GenError::Transform { diagnostic: d, .. } => {
+                write!(f, "{}: {}", d.code.id, d.message)
+            }
             GenError::Invalid(m)
+            | GenError::Plain(m)
             | GenError::Scene(m)
             | GenError::Host(m)
+            | GenError::Nesting(m)
             | GenError::Unsupported(m) => f.write_str(m),
         }
+    }
+}
+
+impl GenError {
+    /// What the C program `program` prints on standard error when it fails this way
+    /// (one or more lines, without the final newline): `Usage: ...` for a usage
+    /// error (gensky's `Use error - why` first), `xform: command line error at '-t'`
+    /// for a bad transform, else `program: message`.
+    pub fn radiance_message(&self, program: &str) -> String {
+        match self {
+            GenError::Usage(u) => match u.split_once('\n') {
+                Some((why, usage)) if program == "gensky" => {
+                    format!("gensky: Use error - {why}\nUsage: {usage}")
+                }
+                _ => format!("Usage: {u}"),
+            },
+            GenError::Transform { at, .. } => format!("{program}: command line error at '{at}'"),
+            GenError::Plain(m) => m.clone(),
+            other => format!("{program}: {other}"),
+        }
+    }
+}
+
+/// A generator that failed after writing some output: Radiance's programs write as
+/// they go, so what came before the failure reaches standard output (and a scene
+/// that runs them), and the caller keeps it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Failure {
+    /// The program that failed (in a pipeline, the stage), for its messages.
+    pub program: String,
+    /// What was written before the failure.
+    pub partial: String,
+    pub error: GenError,
+}
+
+impl Failure {
+    /// A failure before any output.
+    pub fn new(program: &str, error: GenError) -> Self {
+        Failure {
+            program: program.to_string(),
+            partial: String::new(),
+            error,
+        }
+    }
+
+    /// [`GenError::radiance_message`] for the program that failed.
+    pub fn radiance_message(&self) -> String {
+        self.error.radiance_message(&self.program)
     }
 }
 
@@ -83,12 +146,24 @@ pub trait Host {
     /// Standard input, read once (generators cache it).
     fn read_stdin(&mut self) -> Result<String, GenError>;
 
+    /// A line the C programs would print on standard error and go on: warnings
+    /// (`xform: (file): warning - empty file`), and the messages of `!` commands that
+    /// failed inside a scene xform reads (Radiance's children share its stderr).
+    /// Worded as Radiance words them, program name included. Hosts that wrap another
+    /// host must pass these on.
+    fn warn(&mut self, line: &str);
+
     /// The output of a `!` command inside a scene that is not one of the generators
-    /// here. Refused unless the host allows running commands.
-    fn run_command(&mut self, command: &str, _dir: &str) -> Result<String, GenError> {
-        Err(GenError::Host(format!(
-            "not running command \"{command}\": only genbox, genprism and xform are built in"
-        )))
+    /// here (or, if it fails, what it wrote before failing). Refused unless the host
+    /// allows running commands.
+    fn run_command(&mut self, command: &str, _dir: &str) -> Result<String, Failure> {
+        Err(Failure::new(
+            "xform",
+            GenError::Host(format!(
+                "not running command \"{command}\": radc builds in genbox, genprism, genrev, \
+                 gensky, gensurf, genworm and xform"
+            )),
+        ))
     }
 }
 
@@ -103,6 +178,8 @@ impl Host for NoHost {
     fn read_stdin(&mut self) -> Result<String, GenError> {
         Ok(String::new())
     }
+
+    fn warn(&mut self, _line: &str) {}
 }
 
 /// The `printargs()` comment line that starts every generator's output.

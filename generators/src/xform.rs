@@ -15,7 +15,7 @@
 
 use crate::printf::g;
 use crate::words::{Stream, atoi, is_flt, is_int, put_word};
-use crate::{GenError, Host};
+use crate::{Failure, GenError, Host};
 use radc_lang::transform::Transform;
 use radc_lang::{FileId, Span};
 
@@ -32,17 +32,11 @@ const MAX_DEPTH: usize = 32;
 /// More copies than this from `-a` are refused rather than filling memory.
 const MAX_ARRAY: i64 = 1_000_000;
 
-/// The scene xform prints for `args` (the words after `xform`).
-pub fn xform(args: &[String], host: &mut dyn Host) -> Result<String, GenError> {
-    let mut run = Run {
-        host,
-        stdin: None,
-        stdin_taken: false,
-        depth: 0,
-    };
-    let mut out = String::new();
-    run.main(args, &mut out)?;
-    Ok(out)
+/// The scene xform prints for `args` (the words after `xform`). On failure, what it
+/// printed before failing (xform writes as it reads, and Radiance keeps that output).
+/// Warnings go to the host's [`Host::warn`].
+pub fn xform(args: &[String], host: &mut dyn Host) -> Result<String, Failure> {
+    nested(args, host, 0)
 }
 
 struct Run<'h> {
@@ -127,7 +121,7 @@ impl Run<'_> {
         out.push('\n');
         if xac == args.len() {
             if self.stdin_taken {
-                return Err(GenError::Usage("cannot use stdin more than once".into()));
+                return Err(GenError::Invalid("cannot use stdin more than once".into()));
             }
             let text = match &self.stdin {
                 Some(t) => t.clone(),
@@ -157,14 +151,14 @@ impl Run<'_> {
         fi: usize,
         out: &mut String,
     ) -> Result<(), GenError> {
-        let missing = || GenError::Usage("missing file for -f option".into());
+        let missing = || GenError::Invalid("missing file for -f option".into());
         let name = args.get(fi + 1).ok_or_else(missing)?;
         if name.len() > 1 && name.starts_with('-') {
             return Err(missing());
         }
         let text = if name == "-" {
             if self.stdin_taken {
-                return Err(GenError::Usage("cannot use stdin more than once".into()));
+                return Err(GenError::Invalid("cannot use stdin more than once".into()));
             }
             self.stdin_taken = true;
             self.host.read_stdin()?
@@ -181,7 +175,7 @@ impl Run<'_> {
             text
         };
         if self.depth >= MAX_DEPTH {
-            return Err(GenError::Invalid("argument files nested too deep".into()));
+            return Err(GenError::Nesting("argument files nested too deep".into()));
         }
         self.depth += 1;
         let mut lines = Stream::new(&text);
@@ -218,7 +212,7 @@ impl Run<'_> {
     fn array(&mut self, args: &[String], ai: usize, out: &mut String) -> Result<(), GenError> {
         let n = match args.get(ai + 1) {
             Some(c) if atoi(c) > 0 => atoi(c),
-            _ => return Err(GenError::Usage("missing count for -a option".into())),
+            _ => return Err(GenError::Invalid("missing count for -a option".into())),
         };
         if n > MAX_ARRAY {
             return Err(GenError::Invalid(format!(
@@ -262,6 +256,7 @@ impl Run<'_> {
         out: &mut String,
     ) -> Result<(), GenError> {
         let mut input = Stream::new(text);
+        let mut objects = 0;
         while let Some(c) = input.peek() {
             if crate::words::is_c_space(c) {
                 input.next_byte();
@@ -269,17 +264,28 @@ impl Run<'_> {
                 out.push_str(&input.comment());
             } else if c == b'!' {
                 let line = input.line(COMMAND_LINE).unwrap_or_default();
-                self.command(s, dir, &line, out)?;
+                self.command(s, name, dir, &line, out)?;
+                objects += 1;
             } else {
                 object(s, name, &mut input, out)?;
+                objects += 1;
             }
+        }
+        // xform.c counts what it read; a file of nothing but comments is suspect.
+        if objects == 0 {
+            self.host
+                .warn(&format!("xform: ({name}): warning - empty file"));
         }
         Ok(())
     }
 
+    /// A `!` line in `file`: its output transformed in place. A command that fails is
+    /// not fatal, as in xform.c: the child's message, then what it wrote before
+    /// failing, then "bad status". Nesting too deep is fatal (a file including itself).
     fn command(
         &mut self,
         s: &Settings,
+        file: &str,
         dir: &str,
         line: &str,
         out: &mut String,
@@ -301,19 +307,32 @@ impl Run<'_> {
             return Ok(());
         }
         if self.depth >= MAX_DEPTH {
-            return Err(GenError::Scene(format!(
+            return Err(GenError::Nesting(format!(
                 "commands nested more than {MAX_DEPTH} deep at \"{line}\""
             )));
         }
         self.depth += 1;
         let result = self.run_command(command, dir);
         self.depth -= 1;
-        let text = result?;
-        self.stream(s, line, dir, &text, out)
+        match result {
+            Ok(text) => self.stream(s, line, dir, &text, out),
+            Err(f) if matches!(f.error, GenError::Nesting(_)) => Err(f.error),
+            Err(f) => {
+                let message = f.radiance_message();
+                if !message.is_empty() {
+                    self.host.warn(&message);
+                }
+                self.stream(s, line, dir, &f.partial, out)?;
+                self.host.warn(&format!(
+                    "xform: ({file}): warning - bad status from \"{line}\""
+                ));
+                Ok(())
+            }
+        }
     }
 
     /// The output of one `!` command: a built-in generator if it is one, else the host's.
-    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
+    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, Failure> {
         let builtin = {
             let mut host = InDir {
                 host: &mut *self.host,
@@ -333,7 +352,7 @@ pub(crate) fn nested(
     args: &[String],
     host: &mut dyn Host,
     depth: usize,
-) -> Result<String, GenError> {
+) -> Result<String, Failure> {
     let mut run = Run {
         host,
         stdin: None,
@@ -341,8 +360,14 @@ pub(crate) fn nested(
         depth,
     };
     let mut out = String::new();
-    run.main(args, &mut out)?;
-    Ok(out)
+    match run.main(args, &mut out) {
+        Ok(()) => Ok(out),
+        Err(error) => Err(Failure {
+            program: "xform".into(),
+            partial: out,
+            error,
+        }),
+    }
 }
 
 /// The words of one argument-file line as xform splits them: an optional leading `!`
@@ -415,7 +440,11 @@ impl Host for InDir<'_, '_> {
         Ok(String::new())
     }
 
-    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
+    fn warn(&mut self, line: &str) {
+        self.host.warn(line);
+    }
+
+    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, Failure> {
         let joined = match (self.dir, dir) {
             ("", d) => d.to_string(),
             (base, "") => base.to_string(),
@@ -439,13 +468,33 @@ fn parent_dir(name: &str) -> &str {
 fn late_option_hint(d: radc_lang::Diagnostic, words: &[(&str, Span)]) -> GenError {
     let word = words.iter().find(|(_, span)| *span == d.span).map(|w| w.0);
     let late = matches!(word, Some("-n" | "-m" | "-c" | "-e" | "-I"));
-    GenError::Transform(Box::new(
-        if late && d.code == radc_lang::diagnostic::E0801 {
-            d.with_hint("xform's -n, -m, -c, -e and -I go before the transform options")
-        } else {
-            d
-        },
-    ))
+    let at = failing_option(&d, words);
+    let diagnostic = if late && d.code == radc_lang::diagnostic::E0801 {
+        d.with_hint("xform's -n, -m, -c, -e and -I go before the transform options")
+    } else {
+        d
+    };
+    GenError::Transform {
+        diagnostic: Box::new(diagnostic),
+        at,
+    }
+}
+
+/// The word xform's "command line error at" names: `xf()` stops at the option whose
+/// arguments are wrong (`-t` of `-t 1 2`, `-s` of `-s 0`), so the last option word
+/// at or before the diagnostic's word.
+fn failing_option(d: &radc_lang::Diagnostic, words: &[(&str, Span)]) -> String {
+    let upto = words
+        .iter()
+        .rposition(|(_, span)| span.start <= d.span.start)
+        .map_or(0, |k| k + 1);
+    words[..upto]
+        .iter()
+        .rev()
+        .find(|(w, _)| w.starts_with('-') && !is_flt(w))
+        .or(words.first())
+        .map(|(w, _)| w.to_string())
+        .unwrap_or_default()
 }
 
 /// Byte offset of word `k` in the arguments joined by single spaces.

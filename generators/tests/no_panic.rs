@@ -122,6 +122,8 @@ impl Host for Files {
     fn read_stdin(&mut self) -> Result<String, GenError> {
         Ok("void polygon p 0 0 9 0 0 0 1 0 0 0 1 0\n1 2".into())
     }
+
+    fn warn(&mut self, _: &str) {}
 }
 
 #[test]
@@ -133,7 +135,7 @@ fn random_arguments_never_panic() {
         let _ = genbox(&args);
         let _ = genprism(&args, &mut Files);
         let _ = xform(&args, &mut Files);
-        let _ = gensky(&args);
+        let _ = gensky(&args, &mut Files);
         if rng.next().is_multiple_of(16) {
             // calcomp setup is the slow part; a sample is enough.
             let _ = genworm(&args, &mut Files);
@@ -155,7 +157,7 @@ fn random_arguments_never_panic() {
         }
         let mut dated = vec!["3".to_string(), "21".into(), "12".into()];
         dated.extend(args.iter().cloned());
-        let _ = gensky(&dated);
+        let _ = gensky(&dated, &mut Files);
         // Also with a valid start, so the option parsers are reached.
         let mut boxed = vec![
             "m".to_string(),
@@ -188,6 +190,7 @@ fn random_scenes_never_panic() {
             fn read_stdin(&mut self) -> Result<String, GenError> {
                 Ok(self.0.clone())
             }
+            fn warn(&mut self, _: &str) {}
         }
         for args in [
             &["-rz", "30", "-n", "p"][..],
@@ -207,5 +210,6 @@ fn random_scenes_never_panic() {
 #[test]
 fn self_including_scene_is_refused_not_overflowed() {
     let out = xform(&["s.rad".to_string()], &mut Files);
-    assert!(out.is_err());
+    let failure = out.expect_err("a file that includes itself fails");
+    assert!(matches!(failure.error, GenError::Nesting(_)), "{failure:?}");
 }

@@ -8,6 +8,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
+use radc_generators::expansion::expansion;
 use radc_generators::{GenError, Host};
 use radc_lang::db::AuxFiles;
 use radc_lang::scene::Expansion;
@@ -126,13 +127,14 @@ impl AuxFiles for DiskAuxFiles {
                 .map(Path::to_path_buf)
                 .unwrap_or_default(),
             raypath: &self.raypath,
+            warnings: Vec::new(),
         };
+        // The database numbers the output's file; `FileId(0)` stands in for it.
         match radc_generators::command::run_builtin(command, &mut host) {
-            Some(Ok(text)) => Ok(text),
-            Some(Err(e)) => {
-                let program = command.split_whitespace().next().unwrap_or("command");
-                Err(failed(program.rsplit('/').next().unwrap_or(program), e))
-            }
+            Some(result) => match expansion(result, &host.warnings, |_| radc_lang::FileId(0)) {
+                Expansion::Text { text, .. } => Ok(text),
+                other => Err(other),
+            },
             None => Err(Expansion::NotExpanded {
                 reason: "radc builds in genbox, genprism, genrev, gensky, gensurf, genworm and \
                          xform; the language server never runs other commands"
@@ -142,28 +144,12 @@ impl AuxFiles for DiskAuxFiles {
     }
 }
 
-/// How a generator's failure reads, as `radc check` words it.
-fn failed(program: &str, e: GenError) -> Expansion {
-    match e {
-        GenError::Scene(m) if m.contains("nested more than") => Expansion::Cycle {
-            message: format!("{program}: {m}"),
-        },
-        GenError::Transform(d) => Expansion::Failed {
-            message: format!("{program}: {}", d.message),
-            hint: d.hint,
-        },
-        other => Expansion::Failed {
-            message: format!("{program}: {other}"),
-            hint: None,
-        },
-    }
-}
-
 /// Files for generators run from a scene: relative to the scene's folder, then
 /// RAYPATH. Commands nested in files xform reads are refused (the trait's default).
 struct GeneratorHost<'a> {
     dir: PathBuf,
     raypath: &'a [PathBuf],
+    warnings: Vec<String>,
 }
 
 impl Host for GeneratorHost<'_> {
@@ -183,5 +169,9 @@ impl Host for GeneratorHost<'_> {
 
     fn read_stdin(&mut self) -> Result<String, GenError> {
         Ok(String::new())
+    }
+
+    fn warn(&mut self, line: &str) {
+        self.warnings.push(line.to_string());
     }
 }

@@ -7,6 +7,7 @@
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
+use radc_generators::expansion::expansion;
 use radc_generators::{GenError, Host};
 use radc_lang::FileId;
 use radc_lang::scene::{CommandExpander, Expansion};
@@ -79,18 +80,25 @@ impl<'a> Commands<'a> {
 
     /// Runs a command line: a built-in generator, or a pipeline of them (`genbox ... |
     /// xform -rz 90`), in-process; anything else through the shell, if allowed.
-    fn run(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
+    fn run(&self, command: &str, dir: &Path) -> Expansion {
         let mut host = SceneHost {
             dir: dir.to_path_buf(),
             stdin: String::new(),
+            warnings: Vec::new(),
+        };
+        let register = |text: &str| {
+            self.pending
+                .add(format!("!{command}"), text.to_string(), dir.to_path_buf())
         };
         match radc_generators::command::run_builtin(command, &mut host) {
-            Some(Ok(text)) => Ok(text),
-            Some(Err(e)) => {
-                let program = command.split_whitespace().next().unwrap_or("command");
-                Err(failed(program.rsplit('/').next().unwrap_or(program), e))
-            }
-            None => self.shell(command, dir),
+            Some(result) => expansion(result, &host.warnings, register),
+            None => match self.shell(command, dir) {
+                Ok(text) => Expansion::Text {
+                    file: register(&text),
+                    text,
+                },
+                Err(e) => e,
+            },
         }
     }
 
@@ -124,32 +132,9 @@ impl<'a> Commands<'a> {
     }
 }
 
-fn failed(program: &str, e: GenError) -> Expansion {
-    match e {
-        GenError::Scene(m) if m.contains("nested more than") => Expansion::Cycle {
-            message: format!("{program}: {m}"),
-        },
-        GenError::Transform(d) => Expansion::Failed {
-            message: format!("{program}: {}", d.message),
-            hint: d.hint,
-        },
-        other => Expansion::Failed {
-            message: format!("{program}: {other}"),
-            hint: None,
-        },
-    }
-}
-
 impl CommandExpander for Commands<'_> {
     fn expand(&self, command: &str, from: FileId, _depth: u32) -> Expansion {
-        let dir = self.dir_of(from);
-        match self.run(command, &dir) {
-            Ok(text) => {
-                let file = self.pending.add(format!("!{command}"), text.clone(), dir);
-                Expansion::Text { file, text }
-            }
-            Err(e) => e,
-        }
+        self.run(command, &self.dir_of(from))
     }
 }
 
@@ -158,6 +143,8 @@ struct SceneHost {
     dir: PathBuf,
     /// The previous pipeline stage's output.
     stdin: String,
+    /// What the generators would have printed on standard error.
+    warnings: Vec<String>,
 }
 
 impl Host for SceneHost {
@@ -177,5 +164,9 @@ impl Host for SceneHost {
 
     fn read_stdin(&mut self) -> Result<String, GenError> {
         Ok(std::mem::take(&mut self.stdin))
+    }
+
+    fn warn(&mut self, line: &str) {
+        self.warnings.push(line.to_string());
     }
 }

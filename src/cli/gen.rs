@@ -2,7 +2,7 @@
 //! same output (see the `radc-generators` crate). This file is the host that gives
 //! them files, standard input and, only with `--allow-commands`, a shell.
 
-use radc_generators::{GenError, Host};
+use radc_generators::{Failure, GenError, Host};
 use std::io::{Read, Write};
 use std::process::ExitCode;
 
@@ -11,48 +11,59 @@ pub fn genbox(args: &[String]) -> ExitCode {
 }
 
 pub fn gensky(args: &[String]) -> ExitCode {
-    finish("gensky", radc_generators::gensky(args))
+    let mut host = FileHost::default();
+    finish("gensky", radc_generators::gensky(args, &mut host))
 }
 
 pub fn genworm(args: &[String]) -> ExitCode {
     let args = args.to_vec();
-    let result = with_deep_stack(move || {
-        let mut host = FileHost::default();
-        radc_generators::genworm(&args, &mut host)
-    });
-    finish("genworm", result)
+    let result = with_deep_stack(
+        move || {
+            let mut host = FileHost::default();
+            radc_generators::genworm(&args, &mut host)
+        },
+        |e| Failure::new("genworm", e),
+    );
+    report(result)
 }
 
 pub fn genrev(args: &[String]) -> ExitCode {
     let args = args.to_vec();
-    let result = with_deep_stack(move || {
-        let mut host = FileHost::default();
-        radc_generators::genrev(&args, &mut host)
-    });
-    finish("genrev", result)
+    let result = with_deep_stack(
+        move || {
+            let mut host = FileHost::default();
+            radc_generators::genrev(&args, &mut host)
+        },
+        |e| Failure::new("genrev", e),
+    );
+    report(result)
 }
 
 pub fn gensurf(args: &[String]) -> ExitCode {
     let args = args.to_vec();
-    let result = with_deep_stack(move || {
-        let mut host = FileHost::default();
-        radc_generators::gensurf(&args, &mut host)
-    });
-    finish("gensurf", result)
+    let result = with_deep_stack(
+        move || {
+            let mut host = FileHost::default();
+            radc_generators::gensurf(&args, &mut host)
+        },
+        |e| Failure::new("gensurf", e),
+    );
+    report(result)
 }
 
 /// calcomp recursion is legal and can be deep (genworm's curves, or a genworm run by a
 /// `!` line inside a scene given to xform): evaluate on a thread with a stack to match,
 /// as `radc calc` does.
-fn with_deep_stack(
-    work: impl FnOnce() -> Result<String, GenError> + Send + 'static,
-) -> Result<String, GenError> {
+fn with_deep_stack<E: Send + 'static>(
+    work: impl FnOnce() -> Result<String, E> + Send + 'static,
+    lost: impl FnOnce(GenError) -> E,
+) -> Result<String, E> {
     let worker = std::thread::Builder::new()
         .stack_size(512 << 20)
         .spawn(work);
     match worker.map(|h| h.join()) {
         Ok(Ok(result)) => result,
-        _ => Err(GenError::Invalid("evaluation failed".into())),
+        _ => Err(lost(GenError::Invalid("evaluation failed".into()))),
     }
 }
 
@@ -72,35 +83,42 @@ pub fn xform(args: &[String]) -> ExitCode {
         }
         _ => args.to_vec(),
     };
-    let result = with_deep_stack(move || radc_generators::xform(&args, &mut host));
-    finish("xform", result)
+    let result = with_deep_stack(
+        move || radc_generators::xform(&args, &mut host),
+        |e| Failure::new("xform", e),
+    );
+    report(result)
 }
 
 fn finish(program: &str, result: Result<String, GenError>) -> ExitCode {
-    match result {
-        Ok(text) => {
-            let mut out = std::io::stdout().lock();
-            match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(_) => ExitCode::FAILURE,
-            }
-        }
-        Err(GenError::Usage(u)) => {
-            eprintln!("radc {program}: usage: {u}");
-            ExitCode::from(super::USAGE_ERROR)
-        }
-        Err(GenError::Transform(d)) => {
-            eprintln!("radc {program}: error[{}]: {}", d.code.id, d.message);
-            if let Some(h) = &d.hint {
-                eprintln!("  hint: {h}");
-            }
-            ExitCode::from(super::USAGE_ERROR)
-        }
-        Err(e) => {
-            eprintln!("radc {program}: {e}");
-            ExitCode::FAILURE
+    report(result.map_err(|e| Failure::new(program, e)))
+}
+
+/// Writes what the generator made (on failure, what it made before failing, as the
+/// C programs leave it on standard output), then the failure in the C program's
+/// words, and radc's own detail (the diagnostic, a hint) on indented lines after it.
+/// The status is 1 for every failure, as Radiance's generators exit.
+fn report(result: Result<String, Failure>) -> ExitCode {
+    let (text, failure) = match result {
+        Ok(text) => (text, None),
+        Err(mut f) => (std::mem::take(&mut f.partial), Some(f)),
+    };
+    let mut out = std::io::stdout().lock();
+    let written = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+    let Some(f) = failure else {
+        return match written {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(_) => ExitCode::FAILURE,
+        };
+    };
+    eprintln!("{}", f.radiance_message());
+    if let GenError::Transform { diagnostic: d, .. } = &f.error {
+        eprintln!("  error[{}]: {}", d.code.id, d.message);
+        if let Some(h) = &d.hint {
+            eprintln!("  hint: {h}");
         }
     }
+    ExitCode::FAILURE
 }
 
 /// Files from the file system, relative names also searched along RAYPATH as
@@ -133,22 +151,44 @@ impl Host for FileHost {
         Ok(String::from_utf8_lossy(&bytes).into_owned())
     }
 
-    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, GenError> {
+    fn warn(&mut self, line: &str) {
+        eprintln!("{line}");
+    }
+
+    fn run_command(&mut self, command: &str, dir: &str) -> Result<String, Failure> {
+        let program = radc_generators::command::program_of(command);
         if !self.allow_commands {
-            return Err(GenError::Host(format!(
-                "not running \"{command}\": only genbox, genprism and xform are built in \
-                 (pass --allow-commands first to run it with sh)"
-            )));
+            return Err(Failure::new(
+                "xform",
+                GenError::Host(format!(
+                    "not running \"{command}\": radc builds in genbox, genprism, genrev, \
+                     gensky, gensurf, genworm and xform (pass --allow-commands first to run \
+                     other commands with sh)"
+                )),
+            ));
         }
         let mut sh = std::process::Command::new("sh");
         sh.arg("-c").arg(command);
         if !dir.is_empty() {
             sh.current_dir(dir);
         }
-        let output = sh
-            .output()
-            .map_err(|e| GenError::Host(format!("cannot execute \"{command}\": {e}")))?;
+        let output = sh.output().map_err(|e| {
+            Failure::new(
+                "xform",
+                GenError::Host(format!("cannot execute \"{command}\": {e}")),
+            )
+        })?;
         std::io::stderr().write_all(&output.stderr).ok();
-        Ok(String::from_utf8_lossy(&output.stdout).into_owned())
+        let text = String::from_utf8_lossy(&output.stdout).into_owned();
+        if output.status.success() {
+            Ok(text)
+        } else {
+            // The command printed its own complaint on the stderr passed through.
+            Err(Failure {
+                program: program.to_string(),
+                partial: text,
+                error: GenError::Plain(String::new()),
+            })
+        }
     }
 }

@@ -3,9 +3,10 @@ xform print.
 
 Runs each case below with the oracle's programs (source tests/oracle/env.sh first, or
 let check_all.sh do it) in tests/data/generators/inputs/, and writes
-tests/data/generators/cases.json (the case list with exit statuses) and one
-<id>.out file per successful case. tests/generators.rs runs `radc <program>` on the same
-cases and compares.
+tests/data/generators/cases.json (the case list with exit statuses and what the program
+printed on standard error) and one <id>.out file per case with what it printed on
+standard output (for a failing case, what it wrote before failing: Radiance keeps it).
+tests/generators.rs runs `radc <program>` on the same cases and compares all three.
 
     python tests/oracle/regen_generator_goldens.py           # rewrite the goldens
     python tests/oracle/regen_generator_goldens.py --check   # fail if any would change
@@ -81,6 +82,10 @@ CASES = [
     ("gensky-zone-beats-m", "gensky", "11 11 11GMT -a 51.5 -o 0.1 -m 30", None),
     ("gensky-night", "gensky", "1 1 2", None),
     ("gensky-err-month", "gensky", "13 1 12", None),
+    # calcomp errors partway along a curve: what was written up to there is kept
+    ("gensurf-err-late-undefined", "gensurf", "m s s t if(s-.6,x,0) 4 2", None),
+    ("genworm-err-late-undefined", "genworm", "m w t t*2 if(t-.5,x,0) .1 4", None),
+    ("genrev-err-late-undefined", "genrev", "m r t if(t-.5,x,1) 4", None),
     ("gensky-err-zone", "gensky", "3 21 12XYZ", None),
     ("gensky-err-solar-zone", "gensky", "3 21 +12PST", None),
     ("gensky-err-count", "gensky", "3 21", None),
@@ -174,6 +179,26 @@ CASES = [
     ("xform-err-missing-arg", "xform", "-t 1 2 scene.rad", None),
     ("xform-err-array", "xform", "-a 0 scene.rad", None),
     ("xform-err-bad-object", "xform", "-rz 10", "verts.txt"),
+    # xform failing partway: what was written is kept, messages as Radiance words them
+    ("xform-err-missing-file", "xform", "missing.rad", None),
+    ("xform-err-missing-second-file", "xform", "-rz 5 scene.rad missing.rad", None),
+    ("xform-err-bad-type", "xform", "-rz 10 bad-type.rad", None),
+    ("xform-err-bad-args", "xform", "-n x bad-args.rad", None),
+    ("xform-err-argfile-bad-line", "xform", "-f bad-placements.txt sub/small.rad", None),
+    ("xform-err-array-late-option", "xform", "-t 1 2 3 -a 2 -q scene.rad", None),
+    ("xform-err-array-bad-angle", "xform", "-t 1 2 3 -a 2 -rz x scene.rad", None),
+    ("xform-err-missing-f", "xform", "-f", None),
+    ("xform-err-nested-bad-args", "xform", "-n top nested-bad-args.rad", None),
+    # failing commands inside a scene only warn ("bad status"); empty files warn too
+    ("xform-nested-missing", "xform", "nested-missing.rad", None),
+    ("xform-nested-missing-array", "xform", "-a 2 -t 1 0 0 nested-missing.rad", None),
+    ("xform-nested-failures", "xform", "-mx bad-commands.rad", None),
+    ("xform-nested-empty", "xform", "nested-empty.rad", None),
+    ("xform-empty", "xform", "empty.rad", None),
+    ("xform-only-comment", "xform", "only-comment.rad", None),
+    ("gensurf-err-usage", "gensurf", "m s 1 2", None),
+    ("genrev-err-usage", "genrev", "m r t 1", None),
+    ("genworm-err-usage", "genworm", "m w t t t", None),
 ]
 
 
@@ -185,12 +210,12 @@ def run(program, args, stdin_name):
             cwd=INPUTS,
             stdin=stdin,
             stdout=subprocess.PIPE,
-            stderr=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
         )
     finally:
         if stdin_name:
             stdin.close()
-    return p.returncode, p.stdout.decode()
+    return p.returncode, p.stdout.decode(), p.stderr.decode()
 
 
 def random_invocation(rng):
@@ -310,13 +335,12 @@ def main():
     manifest = []
     outputs = {}
     for case_id, program, args, stdin_name in CASES:
-        status, out = run(program, args, stdin_name)
+        status, out, err = run(program, args, stdin_name)
         manifest.append(
             {"id": case_id, "program": program, "args": shlex.split(args), "stdin": stdin_name,
-             "status": status}
+             "status": status, "stderr": err}
         )
-        if status == 0:
-            outputs[case_id + ".out"] = out
+        outputs[case_id + ".out"] = out
     manifest_text = "[\n" + ",\n".join(json.dumps(m) for m in manifest) + "\n]\n"
     stale = []
     if check:

@@ -89,8 +89,9 @@ pub trait AuxFiles: Send + Sync {
         None
     }
 
-    /// The output of a `!` command line (the text after `!`), or why there is none.
-    /// The default runs nothing.
+    /// The output of a `!` command line (the text after `!`), or why there is none
+    /// (an [`Expansion::Partial`] holds output and a failure; the database gives its
+    /// text a file id, replacing the one given). The default runs nothing.
     fn expand(&self, _command: &str, _scene_path: &Path) -> Result<String, Expansion> {
         Err(Expansion::NotExpanded {
             reason: "radc does not run commands here".into(),

@@ -175,6 +175,17 @@ impl CommandExpander for DbLookup<'_> {
                 file: self.new_id(from),
                 text,
             },
+            Err(Expansion::Partial {
+                text,
+                message,
+                hint,
+                ..
+            }) => Expansion::Partial {
+                file: self.new_id(from),
+                text,
+                message,
+                hint,
+            },
             Err(why) => why,
         }
     }

@@ -54,7 +54,7 @@ codes! {
     W0207 = "W0207" "ignored-strings" Warning: "String arguments given to a type that takes none; Radiance ignores them.";
     W0304 = "W0304" "error-in-unused" Warning: "A problem Radiance only reports when the primitive is used; nothing uses it.";
     W0305 = "W0305" "unknown-named-modifier" Warning: "An antimatter or illum names a modifier that is not defined before it; Radiance only warns.";
-    W0306 = "W0306" "command-failed" Warning: "A '!' command failed (bad generator arguments, a missing file); Radiance warns and reads no output from it.";
+    W0306 = "W0306" "command-failed" Warning: "A '!' command failed (bad generator arguments, a missing file); Radiance warns and keeps what it wrote before failing.";
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier is defined again before its earlier definition was ever used.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";

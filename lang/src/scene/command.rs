@@ -19,6 +19,15 @@ pub enum Expansion {
         message: String,
         hint: Option<String>,
     },
+    /// The command wrote `text` and then failed, or something it ran failed: Radiance
+    /// reads what was written (the generators write as they go) and warns, so the
+    /// text is lowered in place and the failure is a warning on the command.
+    Partial {
+        file: FileId,
+        text: String,
+        message: String,
+        hint: Option<String>,
+    },
     /// The command includes, directly or through nested commands, the file it sits in.
     Cycle { message: String },
 }

@@ -261,19 +261,19 @@ impl Lowering<'_> {
             return;
         }
         match self.commands.expand(&c.text, c.span.file, depth + 1) {
-            Expansion::Text { file, text } => {
-                let (syntax, mut diags) = super::parse(file, &text);
-                let first = self.diags.len();
-                self.diags.append(&mut diags);
-                self.items(&syntax.items, warn_unused, depth + 1);
-                for d in &mut self.diags[first..] {
-                    if d.span.file == file {
-                        d.labels.push(crate::diagnostic::Label {
-                            span: c.span,
-                            message: "in the output of this command".into(),
-                        });
-                    }
+            Expansion::Text { file, text } => self.output(c, file, &text, warn_unused, depth),
+            Expansion::Partial {
+                file,
+                text,
+                message,
+                hint,
+            } => {
+                self.output(c, file, &text, warn_unused, depth);
+                let mut d = Diagnostic::new(codes::W0306, c.span, message);
+                if let Some(h) = hint {
+                    d = d.with_hint(h);
                 }
+                self.diags.push(d);
             }
             Expansion::NotExpanded { reason } => self.diags.push(
                 Diagnostic::new(
@@ -296,6 +296,22 @@ impl Lowering<'_> {
                     d = d.with_hint(h);
                 }
                 self.diags.push(d);
+            }
+        }
+    }
+
+    /// Lowers a command's output where the command stands.
+    fn output(&mut self, c: &Command, file: FileId, text: &str, warn_unused: bool, depth: u32) {
+        let (syntax, mut diags) = super::parse(file, text);
+        let first = self.diags.len();
+        self.diags.append(&mut diags);
+        self.items(&syntax.items, warn_unused, depth + 1);
+        for d in &mut self.diags[first..] {
+            if d.span.file == file {
+                d.labels.push(crate::diagnostic::Label {
+                    span: c.span,
+                    message: "in the output of this command".into(),
+                });
             }
         }
     }
@@ -1839,6 +1855,12 @@ mod tests {
                     message: "it failed".into(),
                     hint: None,
                 },
+                ["halfway", name] => Expansion::Partial {
+                    file,
+                    text: format!("paint sphere {name} 0 0 4 0 0 0 1\nundefined sphere y\n"),
+                    message: "it failed halfway".into(),
+                    hint: Some("the program's own message".into()),
+                },
                 _ => Expansion::NotExpanded {
                     reason: "not a generator".into(),
                 },
@@ -1870,5 +1892,26 @@ mod tests {
             diags.iter().map(|d| d.code.id).collect::<Vec<_>>(),
             vec!["E0307"]
         );
+    }
+
+    #[test]
+    fn output_before_a_failure_is_lowered_and_the_failure_warns_on_the_command() {
+        let text = format!("{PAINT}\n!halfway half\n");
+        let (scene, diags) = check_with_commands(&text);
+        assert!(scene.prims.iter().any(|p| p.name == "half"));
+        let failure = diags
+            .iter()
+            .find(|d| d.code.id == "W0306")
+            .expect("a command-failed warning");
+        assert_eq!(failure.span.file, FileId(0));
+        let at = failure.span.start as usize..failure.span.end as usize;
+        assert_eq!(&text[at], "!halfway half");
+        assert_eq!(failure.hint.as_deref(), Some("the program's own message"));
+        // The truncated primitive is reported in the output, pointing back at the line.
+        let truncated = diags
+            .iter()
+            .find(|d| d.span.file != FileId(0))
+            .expect("a diagnostic inside the output");
+        assert_eq!(truncated.labels[0].span, failure.span);
     }
 }
