@@ -4,6 +4,9 @@
 //! JIT's compile time. Library programs need the oracle (`tests/oracle/install.sh`);
 //! without it only the self-contained programs run.
 //!
+//! Last, "library compile": every definition of every `.cal` file of the library
+//! compiled, one program per file (after `rayinit.cal`, as the renderer loads it).
+//!
 //! Run: `cargo bench -p radc-jit --bench calc` (numbers in BENCHMARKS.md, "calcomp JIT").
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -209,5 +212,76 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+/// One program per library file: `rayinit.cal` then the file, with every name the
+/// file defines as an entry point.
+fn library_programs(lib: &PathBuf) -> Vec<(Module, Vec<String>)> {
+    let Ok(rayinit) = std::fs::read_to_string(lib.join("rayinit.cal")) else {
+        return Vec::new();
+    };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(lib)
+        .map(|d| d.filter_map(Result::ok).map(|e| e.path()).collect())
+        .unwrap_or_default();
+    files.retain(|f| f.extension().is_some_and(|x| x == "cal"));
+    files.sort();
+    let mut out = Vec::new();
+    for f in files {
+        let Ok(text) = std::fs::read_to_string(&f) else {
+            continue;
+        };
+        let mut m = Module::new(&Env::renderer());
+        m.add_source(FileId(0), &rayinit);
+        let d = m.add_source(FileId(1), &text);
+        if d.iter().any(|d| d.is_error()) {
+            continue;
+        }
+        m.optimize();
+        let mut names: Vec<String> = m
+            .symbols()
+            .iter()
+            .filter(|s| {
+                s.stack
+                    .last()
+                    .is_some_and(|&d| m.def(d).span.file == FileId(1))
+            })
+            .map(|s| s.name.clone())
+            .collect();
+        names.dedup();
+        out.push((m, names));
+    }
+    out
+}
+
+fn bench_library(c: &mut Criterion) {
+    let Some(lib) = library_dir() else {
+        return;
+    };
+    let programs = library_programs(&lib);
+    let mut functions = 0;
+    let mut entries = 0;
+    for (m, names) in &programs {
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        entries += names.len();
+        match Jit::new().compile(m, &names) {
+            Ok(c) => functions += c.function_count(),
+            Err(e) => eprintln!("notice: library program not compiled: {e}"),
+        }
+    }
+    eprintln!(
+        "library: {} files, {entries} entry points, {functions} variable and function bodies",
+        programs.len()
+    );
+    let mut group = c.benchmark_group("library compile");
+    group.sample_size(10);
+    group.bench_function("every .cal file, every definition", |b| {
+        b.iter(|| {
+            for (m, names) in &programs {
+                let names: Vec<&str> = names.iter().map(String::as_str).collect();
+                black_box(Jit::new().compile(m, &names).is_ok());
+            }
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_library);
 criterion_main!(benches);
