@@ -7,15 +7,96 @@
 //! Last, "library compile": every definition of every `.cal` file of the library
 //! compiled, one program per file (after `rayinit.cal`, as the renderer loads it).
 //!
+//! Times are the bench thread's CPU time, not wall-clock time (see [`CpuTime`]).
+//!
 //! Run: `cargo bench -p radc-jit --bench calc` (numbers in BENCHMARKS.md, "calcomp JIT").
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::measurement::{Measurement, ValueFormatter};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use radc_jit::Jit;
 use radc_lang::FileId;
 use radc_lang::cal::eval::{Errno, EvalError, Evaluator, Input};
 use radc_lang::cal::{Env, Module};
 use std::hint::black_box;
 use std::path::PathBuf;
+
+/// The machine is shared: wall-clock time mostly measures the other processes, so
+/// this bench measures the thread's own CPU time (`CLOCK_THREAD_CPUTIME_ID`).
+struct CpuTime;
+
+#[repr(C)]
+struct Timespec {
+    tv_sec: i64,
+    tv_nsec: i64,
+}
+
+unsafe extern "C" {
+    fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
+}
+
+const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+
+fn thread_cpu_ns() -> u64 {
+    let mut ts = Timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec (the C layout on 64-bit Linux);
+    // clock_gettime only writes it.
+    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    if rc != 0 {
+        return 0;
+    }
+    ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
+}
+
+impl Measurement for CpuTime {
+    type Intermediate = u64;
+    type Value = u64;
+    fn start(&self) -> u64 {
+        thread_cpu_ns()
+    }
+    fn end(&self, start: u64) -> u64 {
+        thread_cpu_ns().saturating_sub(start)
+    }
+    fn add(&self, a: &u64, b: &u64) -> u64 {
+        a + b
+    }
+    fn zero(&self) -> u64 {
+        0
+    }
+    fn to_f64(&self, v: &u64) -> f64 {
+        *v as f64
+    }
+    fn formatter(&self) -> &dyn ValueFormatter {
+        &CpuFormatter
+    }
+}
+
+/// Nanoseconds, scaled as criterion scales wall time.
+struct CpuFormatter;
+
+impl ValueFormatter for CpuFormatter {
+    fn scale_values(&self, typical: f64, values: &mut [f64]) -> &'static str {
+        let (div, unit) = if typical < 1e3 {
+            (1.0, "ns")
+        } else if typical < 1e6 {
+            (1e3, "µs")
+        } else if typical < 1e9 {
+            (1e6, "ms")
+        } else {
+            (1e9, "s")
+        };
+        values.iter_mut().for_each(|v| *v /= div);
+        unit
+    }
+    fn scale_throughputs(&self, _: f64, _: &Throughput, values: &mut [f64]) -> &'static str {
+        self.scale_for_machines(values)
+    }
+    fn scale_for_machines(&self, _: &mut [f64]) -> &'static str {
+        "ns"
+    }
+}
 
 /// Input columns already parsed, so only evaluation is timed.
 struct Columns<'a>(&'a [f64]);
@@ -161,7 +242,7 @@ fn entries(m: &Module) -> Vec<String> {
     m.outputs().keys().map(|c| format!("${c}")).collect()
 }
 
-fn bench(c: &mut Criterion) {
+fn bench(c: &mut Criterion<CpuTime>) {
     let lib = library_dir();
     if lib.is_none() {
         eprintln!("notice: no .oracle/ library: only the self-contained programs run");
@@ -251,7 +332,7 @@ fn library_programs(lib: &PathBuf) -> Vec<(Module, Vec<String>)> {
     out
 }
 
-fn bench_library(c: &mut Criterion) {
+fn bench_library(c: &mut Criterion<CpuTime>) {
     let Some(lib) = library_dir() else {
         return;
     };
@@ -283,5 +364,9 @@ fn bench_library(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench, bench_library);
+criterion_group! {
+    name = benches;
+    config = Criterion::default().with_measurement(CpuTime);
+    targets = bench, bench_library
+}
 criterion_main!(benches);

@@ -31,7 +31,7 @@ pub const INLINE_NODES: usize = 160;
 /// `=` variables up to this many nodes are inlined at their uses, up to
 /// [`INLINE_VAR_NESTING`] variables within each other.
 pub const INLINE_VAR_NODES: usize = 48;
-pub const INLINE_VAR_NESTING: usize = 3;
+pub const INLINE_VAR_NESTING: usize = 6;
 
 /// One function to generate.
 pub enum Job<'m> {
