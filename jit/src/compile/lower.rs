@@ -98,6 +98,9 @@ pub struct Lower<'a, 'b, 'm> {
     /// path to the current point: a slot's value never changes once computed, and a
     /// variable's cached value not within a record, so later uses reuse them.
     known_args: HashMap<Key, Value>,
+    /// What each `know` replaced, so a branch's additions can be undone (a copy of
+    /// the map per branch would make the lowering quadratic).
+    undo: Vec<(Key, Option<Value>)>,
     /// Values that are numbers (made by [`Lower::number`]).
     numbers: HashMap<Value, f64>,
     /// Inlined calls: frame `k >= 1` is `frames[k - 1]`; frame 0 is the activation
@@ -150,6 +153,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             uniform: None,
             thunk_sig: None,
             known_args: HashMap::new(),
+            undo: Vec::new(),
             numbers: HashMap::new(),
             frames: Vec::new(),
             cur: 0,
@@ -526,13 +530,37 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.numbers.get(&v).is_some_and(|x| !x.is_nan())
     }
 
+    /// Record that `key` is computed, as `v`, on every path from here.
+    fn know(&mut self, key: Key, v: Value) {
+        let old = self.known_args.insert(key, v);
+        self.undo.push((key, old));
+    }
+
+    /// The state of `known_args` before a branch, for [`Lower::rewind`].
+    fn mark(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Forget what was learned since `mark` (at the end of a branch).
+    fn rewind(&mut self, mark: usize) {
+        while self.undo.len() > mark {
+            let Some((key, old)) = self.undo.pop() else {
+                break;
+            };
+            match old {
+                Some(v) => self.known_args.insert(key, v),
+                None => self.known_args.remove(&key),
+            };
+        }
+    }
+
     /// The value already computed for `key` on every path here, or `make`'s.
     fn memo(&mut self, key: Key, make: impl FnOnce(&mut Self) -> Value) -> Value {
         if let Some(&v) = self.known_args.get(&key) {
             return v;
         }
         let v = make(self);
-        self.known_args.insert(key, v);
+        self.know(key, v);
         v
     }
 
@@ -575,9 +603,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.set_errno(ERRNO_RANGE);
         self.jump_with(j, den);
         self.b.switch_to_block(nz);
-        let known = self.known_args.clone();
+        let known = self.mark();
         let num = self.expr(a)?;
-        self.known_args = known;
+        self.rewind(known);
         let q = self.b.ins().fdiv(num, den);
         self.jump_with(j, q);
         self.b.switch_to_block(j);
@@ -606,7 +634,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Some(&d) => d,
             None => {
                 let d = self.call_import_f64("radc_pow", &[x, y]);
-                self.known_args.insert(Key::Pow(x, y), d);
+                self.know(Key::Pow(x, y), d);
                 d
             }
         };
@@ -674,7 +702,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             && self.st.var_inlinable(def)
         {
             let v = self.inline_variable(def)?;
-            self.known_args.insert(Key::Var(def.0), v);
+            self.know(Key::Var(def.0), v);
             return Ok(v);
         }
         let (fid, idx) = self.st.var_fn(def)?;
@@ -690,7 +718,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             return Ok(v);
         }
         let v = self.cached_variable(def, f, idx);
-        self.known_args.insert(Key::Var(def.0), v);
+        self.know(Key::Var(def.0), v);
         Ok(v)
     }
 
@@ -709,7 +737,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = self.cached_value(idx);
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
-        let known = self.known_args.clone();
+        let known = self.mark();
         let tick = self.load_raw(types::I64, OFF_CLOCK);
         let cache = self.load_raw(self.st.ptr, OFF_CACHE);
         let off = idx as i32 * CACHED_SIZE;
@@ -729,7 +757,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.abort = Some(outer);
         self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
         self.restores.push((restore, cache, off, before, outer));
-        self.known_args = known;
+        self.rewind(known);
         self.jump_with(j, v);
         self.b.switch_to_block(j);
         Ok(out)
@@ -761,7 +789,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             return v;
         }
         let v = self.compute_argument(n);
-        self.known_args.insert(Key::Arg(0, n), v);
+        self.know(Key::Arg(0, n), v);
         v
     }
 
@@ -851,9 +879,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             let v = self.b.use_var(value);
             self.jump_with(j, v);
             self.b.switch_to_block(compute);
-            let known = self.known_args.clone();
+            let known = self.mark();
             let v = self.inline_compute(parent, arg)?;
-            self.known_args = known;
+            self.rewind(known);
             self.jump_with(j, v);
             self.b.switch_to_block(j);
             out
@@ -861,7 +889,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let one = self.b.ins().iconst(types::I8, 1);
         self.b.def_var(flag, one);
         self.b.def_var(value, v);
-        self.known_args.insert(Key::Arg(k, n), v);
+        self.know(Key::Arg(k, n), v);
         Ok(v)
     }
 
@@ -1313,15 +1341,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 let yes = self.b.create_block();
                 let no = self.b.create_block();
                 self.b.ins().brif(gt, yes, &[], no, &[]);
-                let known = self.known_args.clone();
+                let known = self.mark();
                 self.b.switch_to_block(yes);
                 let v = self.lib_arg(args, 1, sym)?;
                 self.jump_with(j, v);
-                self.known_args = known.clone();
+                self.rewind(known);
                 self.b.switch_to_block(no);
                 let v = self.lib_arg(args, 2, sym)?;
                 self.jump_with(j, v);
-                self.known_args = known;
+                self.rewind(known);
                 self.b.switch_to_block(j);
                 out
             }
@@ -1428,7 +1456,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                     Some(name) => self.call_import_f64(name, &[x]),
                     None => self.f64c(0.0),
                 };
-                self.known_args.insert(key, d);
+                self.know(key, d);
                 d
             }
         }
@@ -1492,14 +1520,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn select_case(&mut self, args: &'m [Expr], k: usize, sym: u32, j: ir::Block) -> R<()> {
-        let known = self.known_args.clone();
+        let known = self.mark();
         let v = if k == 0 {
             self.f64c((args.len() - 1) as f64)
         } else {
             self.lib_arg(args, k, sym)?
         };
         self.jump_with(j, v);
-        self.known_args = known;
+        self.rewind(known);
         Ok(())
     }
 }
