@@ -4,15 +4,82 @@
 //! JIT's compile time. Library programs need the oracle (`tests/oracle/install.sh`);
 //! without it only the self-contained programs run.
 //!
+//! Last, "library compile": every definition of every `.cal` file of the library
+//! compiled, one program per file (after `rayinit.cal`, as the renderer loads it).
+//!
+//! Times are the bench thread's CPU time, not wall-clock time (see [`CpuTime`]).
+//!
 //! Run: `cargo bench -p radc-jit --bench calc` (numbers in BENCHMARKS.md, "calcomp JIT").
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::measurement::{Measurement, ValueFormatter};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use radc_jit::Jit;
 use radc_lang::FileId;
 use radc_lang::cal::eval::{Errno, EvalError, Evaluator, Input};
 use radc_lang::cal::{Env, Module};
 use std::hint::black_box;
 use std::path::PathBuf;
+
+/// The machine is shared: wall-clock time mostly measures the other processes, so
+/// this bench measures the thread's own CPU time (from `/proc/thread-self/schedstat`).
+struct CpuTime;
+
+/// This thread's CPU time in nanoseconds: the first field of
+/// `/proc/thread-self/schedstat` (time spent running), 0 where it cannot be read.
+fn thread_cpu_ns() -> u64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(0)
+}
+
+impl Measurement for CpuTime {
+    type Intermediate = u64;
+    type Value = u64;
+    fn start(&self) -> u64 {
+        thread_cpu_ns()
+    }
+    fn end(&self, start: u64) -> u64 {
+        thread_cpu_ns().saturating_sub(start)
+    }
+    fn add(&self, a: &u64, b: &u64) -> u64 {
+        a + b
+    }
+    fn zero(&self) -> u64 {
+        0
+    }
+    fn to_f64(&self, v: &u64) -> f64 {
+        *v as f64
+    }
+    fn formatter(&self) -> &dyn ValueFormatter {
+        &CpuFormatter
+    }
+}
+
+/// Nanoseconds, scaled as criterion scales wall time.
+struct CpuFormatter;
+
+impl ValueFormatter for CpuFormatter {
+    fn scale_values(&self, typical: f64, values: &mut [f64]) -> &'static str {
+        let (div, unit) = if typical < 1e3 {
+            (1.0, "ns")
+        } else if typical < 1e6 {
+            (1e3, "µs")
+        } else if typical < 1e9 {
+            (1e6, "ms")
+        } else {
+            (1e9, "s")
+        };
+        values.iter_mut().for_each(|v| *v /= div);
+        unit
+    }
+    fn scale_throughputs(&self, _: f64, _: &Throughput, values: &mut [f64]) -> &'static str {
+        self.scale_for_machines(values)
+    }
+    fn scale_for_machines(&self, _: &mut [f64]) -> &'static str {
+        "ns"
+    }
+}
 
 /// Input columns already parsed, so only evaluation is timed.
 struct Columns<'a>(&'a [f64]);
@@ -158,7 +225,7 @@ fn entries(m: &Module) -> Vec<String> {
     m.outputs().keys().map(|c| format!("${c}")).collect()
 }
 
-fn bench(c: &mut Criterion) {
+fn bench(c: &mut Criterion<CpuTime>) {
     let lib = library_dir();
     if lib.is_none() {
         eprintln!("notice: no .oracle/ library: only the self-contained programs run");
@@ -209,5 +276,80 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+/// One program per library file: `rayinit.cal` then the file, with every name the
+/// file defines as an entry point.
+fn library_programs(lib: &PathBuf) -> Vec<(Module, Vec<String>)> {
+    let Ok(rayinit) = std::fs::read_to_string(lib.join("rayinit.cal")) else {
+        return Vec::new();
+    };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(lib)
+        .map(|d| d.filter_map(Result::ok).map(|e| e.path()).collect())
+        .unwrap_or_default();
+    files.retain(|f| f.extension().is_some_and(|x| x == "cal"));
+    files.sort();
+    let mut out = Vec::new();
+    for f in files {
+        let Ok(text) = std::fs::read_to_string(&f) else {
+            continue;
+        };
+        let mut m = Module::new(&Env::renderer());
+        m.add_source(FileId(0), &rayinit);
+        let d = m.add_source(FileId(1), &text);
+        if d.iter().any(|d| d.is_error()) {
+            continue;
+        }
+        m.optimize();
+        let mut names: Vec<String> = m
+            .symbols()
+            .iter()
+            .filter(|s| {
+                s.stack
+                    .last()
+                    .is_some_and(|&d| m.def(d).span.file == FileId(1))
+            })
+            .map(|s| s.name.clone())
+            .collect();
+        names.dedup();
+        out.push((m, names));
+    }
+    out
+}
+
+fn bench_library(c: &mut Criterion<CpuTime>) {
+    let Some(lib) = library_dir() else {
+        return;
+    };
+    let programs = library_programs(&lib);
+    let mut functions = 0;
+    let mut entries = 0;
+    for (m, names) in &programs {
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        entries += names.len();
+        match Jit::new().compile(m, &names) {
+            Ok(c) => functions += c.function_count(),
+            Err(e) => eprintln!("notice: library program not compiled: {e}"),
+        }
+    }
+    eprintln!(
+        "library: {} files, {entries} entry points, {functions} variable and function bodies",
+        programs.len()
+    );
+    let mut group = c.benchmark_group("library compile");
+    group.sample_size(10);
+    group.bench_function("every .cal file, every definition", |b| {
+        b.iter(|| {
+            for (m, names) in &programs {
+                let names: Vec<&str> = names.iter().map(String::as_str).collect();
+                black_box(Jit::new().compile(m, &names).is_ok());
+            }
+        })
+    });
+    group.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().with_measurement(CpuTime);
+    targets = bench, bench_library
+}
 criterion_main!(benches);

@@ -315,3 +315,46 @@ fn nonfinite_results_as_errors() {
         MathErrors::NonFinite,
     );
 }
+
+/// Small user functions are inlined: their arguments must still be call-by-need
+/// (computed once, on first use, in the caller's frame), with the same depth count.
+#[test]
+fn inlined_functions_keep_call_by_need() {
+    agree(
+        "g(x)=x*2; f(a,b)=g(a)+g(b)+g(a); h(a,b)=if(a,b,a)+b; $1=f(1/$1,$2); $2=h($1,1/$2);\
+         $3=h($2,sqrt(-$1))",
+        &["0\t1", "1\t0", "-1\t-1", "2\t2"],
+    );
+    agree("f(a,b)=if(a,b,a); $1=f($1)", &["1", "0"]);
+    agree("f(a,b)=a+b; g(x)=f(x); $1=g($1)", &["1"]);
+    agree("f(a,b,c)=c+a; g(x)=f(x,x); $1=g($1)", &["1"]);
+    // Depth warnings name the call that reaches the level, inlined or not.
+    agree(
+        "s(x)=sin(x); down(n)=if(n,s(down(n-1)),0); $1=down($1)",
+        &["97", "98", "99", "150"],
+    );
+    agree(
+        "f(n)=sin(1)+if(n,f(n-1),0); $1=f($1)",
+        &["97", "98", "99", "100", "150"],
+    );
+}
+
+/// A C library result reused for the same argument value, and numbers folded while
+/// compiling, must leave `errno` and the warnings as the calls would.
+#[test]
+fn reused_and_folded_library_calls() {
+    agree(
+        "x=$1; $1=sqrt(x)+sqrt(x)+sqrt(x+0); $2=max($2,sin(x))+max(sin(x),$2);\
+         $3=x^3+x^3+(1/x)^2+(1/x)^2; $4=sqrt(-x)+sqrt(-x)",
+        &["1\t1e999", "0\t2", "-4\t-1e999", "nan\t1"],
+    );
+    agree(
+        "c=0.66; k:2; $1=sin(c)*$1+cos(c)+tan(k*c)+atan2(c,k)+2^k+sqrt(-c)+log(-k)+exp(1e4)",
+        &["1", "2"],
+    );
+    agree_with(
+        "c=0.66; $1=sin(c)+sqrt(-c)+log(-c)+exp(1e4)+(-c)^0.5+$1^2+$1^2",
+        &["1", "1e200"],
+        MathErrors::NonFinite,
+    );
+}

@@ -16,12 +16,22 @@ use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::ir::{Callee, DefId, Expr, Node, SymId};
 use radc_lang::cal::syntax::DefKind;
 use radc_lang::cal::{Module, deps};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Beyond these the program is left to the interpreter: the lowering recurses once
 /// per nesting level, and huge functions take long to compile for little gain.
 pub const MAX_NESTING: usize = 1000;
 pub const MAX_NODES: usize = 2_000_000;
+
+/// User functions up to this many expression nodes (callees they inline counted in)
+/// are inlined at their call sites instead of called: no argument block, no thunks,
+/// no indirect calls, and the optimiser sees through them.
+pub const INLINE_NODES: usize = 160;
+
+/// `=` variables up to this many nodes are inlined at their uses, up to
+/// [`INLINE_VAR_NESTING`] variables within each other.
+pub const INLINE_VAR_NODES: usize = 48;
+pub const INLINE_VAR_NESTING: usize = 6;
 
 /// One function to generate.
 pub enum Job<'m> {
@@ -59,6 +69,9 @@ pub struct State<'m> {
     pub warn_nonconstant: bool,
     pub imports: HashMap<&'static str, FuncId>,
     pub var_fns: HashMap<DefId, (FuncId, u32)>,
+    pub var_slots: HashMap<DefId, u32>,
+    /// Every definition whose body was generated, as a function or inlined.
+    pub compiled_defs: HashSet<DefId>,
     pub user_fns: HashMap<DefId, FuncId>,
     pub host_vars: HashMap<DefId, u32>,
     /// Initial cache contents, by cache index.
@@ -67,6 +80,8 @@ pub struct State<'m> {
     pub uses_fn_values: HashMap<DefId, bool>,
     /// Thunks of simple arguments, by context and (kind, number).
     pub thunks: HashMap<(Option<DefId>, (u8, u32)), FuncId>,
+    /// Inlined size of user functions, `None` for those never inlined.
+    pub inline_costs: HashMap<DefId, Option<usize>>,
     pub queue: Vec<Job<'m>>,
 }
 
@@ -79,14 +94,13 @@ impl<'m> State<'m> {
         set(&mut flags, "opt_level", "speed")?;
         set(&mut flags, "use_colocated_libcalls", "false")?;
         set(&mut flags, "is_pic", "false")?;
+        // The verifier in debug builds, or when `RADC_JIT_VERIFY` is set (to check
+        // the generated code in release test runs).
+        let verify = cfg!(debug_assertions) || std::env::var_os("RADC_JIT_VERIFY").is_some();
         set(
             &mut flags,
             "enable_verifier",
-            if cfg!(debug_assertions) {
-                "true"
-            } else {
-                "false"
-            },
+            if verify { "true" } else { "false" },
         )?;
         let isa = cranelift_native::builder()
             .map_err(|e| JitError::Backend(e.to_string()))?
@@ -150,11 +164,14 @@ impl<'m> State<'m> {
             warn_nonconstant: module.folds(),
             imports,
             var_fns: HashMap::new(),
+            var_slots: HashMap::new(),
+            compiled_defs: HashSet::new(),
             user_fns: HashMap::new(),
             host_vars: HashMap::new(),
             cache_init: Vec::new(),
             uses_fn_values: HashMap::new(),
             thunks: HashMap::new(),
+            inline_costs: HashMap::new(),
             queue: Vec::new(),
         })
     }
@@ -168,6 +185,18 @@ impl<'m> State<'m> {
             .jit
             .declare_anonymous_function(&self.sig_var)
             .map_err(|e| JitError::Backend(e.to_string()))?;
+        let slot = self.var_slot(def);
+        self.var_fns.insert(def, (id, slot));
+        self.queue.push(Job::Var(def));
+        Ok((id, slot))
+    }
+
+    /// The cache slot of a variable definition, allocated on first use (a variable
+    /// whose body is inlined at every use needs a slot but no function).
+    pub fn var_slot(&mut self, def: DefId) -> u32 {
+        if let Some(&s) = self.var_slots.get(&def) {
+            return s;
+        }
         let slot = self.cache_init.len() as u32;
         let d = self.module.def(def);
         self.cache_init.push(match d.parse_time_value {
@@ -177,9 +206,27 @@ impl<'m> State<'m> {
             },
             None => Cached::default(),
         });
-        self.var_fns.insert(def, (id, slot));
-        self.queue.push(Job::Var(def));
-        Ok((id, slot))
+        self.var_slots.insert(def, slot);
+        slot
+    }
+
+    /// Whether a variable's body is small enough to inline at its uses (the
+    /// freshness test and the caching stay; see `Lower::inline_variable`).
+    pub fn var_inlinable(&self, def: DefId) -> bool {
+        let d = self.module.def(def);
+        if d.kind != DefKind::Assign || self.host_vars.contains_key(&def) {
+            return false;
+        }
+        let mut nodes = 0;
+        let mut stack = vec![&d.body];
+        while let Some(e) = stack.pop() {
+            nodes += 1;
+            if nodes > INLINE_VAR_NODES {
+                return false;
+            }
+            stack.extend(e.children());
+        }
+        true
     }
 
     /// The uniform function of a user function definition, declared on first use.
@@ -218,6 +265,57 @@ impl<'m> State<'m> {
             self.thunks.insert((owner, k), id);
         }
         Ok(id)
+    }
+
+    /// Whether calls of a user function are inlined: it is not recursive (not even
+    /// through other functions), never calls through a parameter, every user function
+    /// it calls is inlined too (so inlined code never builds an argument block that
+    /// would need thunks for its parameters), and all that is small.
+    pub fn inlinable(&mut self, def: DefId) -> bool {
+        self.inline_cost(def, &mut Vec::new()).is_some()
+    }
+
+    fn inline_cost(&mut self, def: DefId, visiting: &mut Vec<DefId>) -> Option<usize> {
+        if let Some(&c) = self.inline_costs.get(&def) {
+            return c;
+        }
+        if visiting.contains(&def) {
+            // A cycle: every function on it is recursive, and so never inlined.
+            return None;
+        }
+        visiting.push(def);
+        let module = self.module;
+        let mut cost = 0usize;
+        let mut ok = true;
+        let mut stack = vec![&module.def(def).body];
+        while let Some(e) = stack.pop() {
+            cost += 1;
+            if let Node::Call { callee, .. } = &e.node {
+                let inlined = match callee {
+                    Callee::Arg(_) => None,
+                    Callee::Sym(s) => match module
+                        .current_def(*s)
+                        .filter(|&d| module.def(d).is_function())
+                    {
+                        Some(d) => self.inline_cost(d, visiting),
+                        None => Some(0),
+                    },
+                };
+                match inlined {
+                    Some(k) => cost += k,
+                    None => ok = false,
+                }
+            }
+            if !ok || cost > INLINE_NODES {
+                ok = false;
+                break;
+            }
+            stack.extend(e.children());
+        }
+        visiting.pop();
+        let cost = ok.then_some(cost);
+        self.inline_costs.insert(def, cost);
+        cost
     }
 
     /// Whether a function's parameters can be called, or passed on to a call, as
@@ -302,10 +400,20 @@ pub fn drain(state: &mut State<'_>) -> Result<(), JitError> {
             let b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
             Lower::build(b, state, job)?;
         }
+        let dump = std::env::var_os("RADC_JIT_DUMP").is_some();
+        if dump {
+            ctx.set_disasm(true);
+        }
         state
             .jit
             .define_function(id, &mut ctx)
             .map_err(|e| JitError::Backend(format!("{e:?}")))?;
+        if dump {
+            eprintln!("{}", ctx.func.display());
+            if let Some(c) = ctx.compiled_code() {
+                eprintln!("{}", c.vcode.clone().unwrap_or_default());
+            }
+        }
         state.jit.clear_context(&mut ctx);
     }
     Ok(())

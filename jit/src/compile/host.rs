@@ -7,7 +7,7 @@
 //! unaliased for the duration of the call (see `Compiled::run`).
 
 use super::layout::*;
-use radc_lang::cal::builtins::{Builtin, LibFn, rand};
+use radc_lang::cal::builtins::{Builtin, DEFAULT_NAN, LibFn, rand};
 use radc_lang::cal::eval::{Errno, EvalError, Input, MAX_DEPTH, MathErrors, Warning, c_round};
 
 /// Host symbols by the name the generated code imports them under.
@@ -58,15 +58,37 @@ extern "C" fn m_pow(x: f64, y: f64) -> f64 {
 extern "C" fn m_atan2(y: f64, x: f64) -> f64 {
     y.atan2(x)
 }
-macro_rules! unary {
-    ($($f:ident => $b:ident),*) => {$(
-        extern "C" fn $f(x: f64) -> f64 {
-            Builtin::$b.unary(x).unwrap_or(0.0)
-        }
-    )*};
+// Direct wrappers, each the very function `Builtin::unary` calls (with its domain
+// rules for acos, asin and log10): `unary` itself is a `match` in another crate that
+// is not inlined, and costs as much as a fast C library call. The test below holds
+// them to `Builtin::unary`, bit for bit.
+extern "C" fn m_acos(x: f64) -> f64 {
+    if x.abs() > 1.0 { DEFAULT_NAN } else { x.acos() }
 }
-unary!(m_acos => Acos, m_asin => Asin, m_atan => Atan, m_cos => Cos, m_exp => Exp,
-       m_log => Log, m_log10 => Log10, m_sin => Sin, m_tan => Tan);
+extern "C" fn m_asin(x: f64) -> f64 {
+    if x.abs() > 1.0 { DEFAULT_NAN } else { x.asin() }
+}
+extern "C" fn m_log10(x: f64) -> f64 {
+    if x < 0.0 { DEFAULT_NAN } else { x.log10() }
+}
+extern "C" fn m_atan(x: f64) -> f64 {
+    x.atan()
+}
+extern "C" fn m_cos(x: f64) -> f64 {
+    x.cos()
+}
+extern "C" fn m_exp(x: f64) -> f64 {
+    x.exp()
+}
+extern "C" fn m_log(x: f64) -> f64 {
+    x.ln()
+}
+extern "C" fn m_sin(x: f64) -> f64 {
+    x.sin()
+}
+extern "C" fn m_tan(x: f64) -> f64 {
+    x.tan()
+}
 extern "C" fn m_rand(x: f64) -> f64 {
     rand(x)
 }
@@ -362,4 +384,54 @@ fn builtin(raw: &mut Raw, block: *mut Block, sym: u32, b: Builtin) -> Option<f64
             other.unary(x).unwrap_or(0.0)
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn math_wrappers_are_the_interpreters_functions() {
+        let wrappers: [(Builtin, extern "C" fn(f64) -> f64); 10] = [
+            (Builtin::Acos, m_acos),
+            (Builtin::Asin, m_asin),
+            (Builtin::Atan, m_atan),
+            (Builtin::Cos, m_cos),
+            (Builtin::Exp, m_exp),
+            (Builtin::Log, m_log),
+            (Builtin::Log10, m_log10),
+            (Builtin::Rand, m_rand),
+            (Builtin::Sin, m_sin),
+            (Builtin::Tan, m_tan),
+        ];
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1.0000001,
+            -1.0000001,
+            0.5,
+            -0.5,
+            2.0,
+            -2.0,
+            1e-300,
+            1e300,
+            -1e300,
+            710.0,
+            -746.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        xs.extend((0..2000).map(|i| (i as f64 - 1000.0) * 0.0137));
+        for (b, f) in wrappers {
+            for &x in &xs {
+                let want = b.unary(x).unwrap_or(0.0);
+                let got = f(x);
+                assert_eq!(got.to_bits(), want.to_bits(), "{b:?}({x})");
+            }
+        }
+    }
 }

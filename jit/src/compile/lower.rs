@@ -4,7 +4,7 @@
 //! arguments, and only the taken side of `if`/`select` evaluated.
 
 use super::JitError;
-use super::codegen::{EntryBody, Job, State, is_constant};
+use super::codegen::{EntryBody, INLINE_VAR_NESTING, Job, State, is_constant};
 use super::host::unary_symbol;
 use super::layout::*;
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
@@ -12,12 +12,12 @@ use cranelift_codegen::ir::{
     self, BlockArg, FuncRef, InstBuilder, MemFlagsData, SigRef, StackSlotData, StackSlotKind,
     Value, types,
 };
-use cranelift_frontend::FunctionBuilder;
+use cranelift_frontend::{FunctionBuilder, Variable};
 use cranelift_module::{FuncId, Module as _};
 use radc_lang::cal::builtins::{Builtin, LibFn};
-use radc_lang::cal::eval::MathErrors;
+use radc_lang::cal::eval::{MathErrors, c_round};
 use radc_lang::cal::ir::{Callee, DefId, Expr, Node, SymId};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 type R<T> = Result<T, JitError>;
 
@@ -27,6 +27,60 @@ enum CalleeName {
     Static(SymId),
     /// Known only at run time (a call through a parameter): the symbol as an i64.
     Dynamic(Value),
+}
+
+/// What the lowering knows has been computed on every path to the current point,
+/// with the value that holds it (see `Lower::known`).
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum Key {
+    /// Parameter `n` of frame `frame`: a slot's value never changes once computed.
+    Arg(u32, u32),
+    /// A variable: its cached value does not change within a record.
+    Var(u32),
+    /// The C library's result for an argument value (`pow` for two): the
+    /// functions are pure, so a second call with the same value reuses it (the
+    /// `errno` and depth bookkeeping around the call is still done each time).
+    Call(Builtin, Value),
+    Pow(Value, Value),
+    /// An exact arithmetic operation (kind, operands): the same operation on the
+    /// same values is the same value, so later calls on it can be recognised.
+    Op(u8, Value, Value),
+    /// A number, by bits.
+    Num(u64),
+}
+
+const OP_ADD: u8 = 0;
+const OP_MUL: u8 = 1;
+const OP_SUB: u8 = 2;
+const OP_NEG: u8 = 3;
+const OP_DIV: u8 = 4;
+
+/// How deep [`Lower::const_value`] looks: constant subtrees are small in practice,
+/// and the bound keeps the lowering linear.
+const CONST_DEPTH: u32 = 6;
+
+/// The interpreter's `nan_first`, for values computed while compiling.
+fn nan_first(first: f64, second: f64, result: f64) -> f64 {
+    if first.is_nan() {
+        first
+    } else if second.is_nan() {
+        second
+    } else {
+        result
+    }
+}
+
+/// One inlined call of a user function: its arguments, still unevaluated (they are
+/// computed on first use, in the caller's frame, as call-by-need requires).
+struct Inline<'m> {
+    args: &'m [Expr],
+    /// The frame the arguments are evaluated in (0: the function being generated).
+    parent: u32,
+    /// The function's symbol, for "too few arguments".
+    sym: u32,
+    /// Per argument: whether it was computed (i8) and its value, as SSA variables,
+    /// for uses that only some paths reach after computing it.
+    vars: Vec<(Variable, Variable)>,
 }
 
 pub struct Lower<'a, 'b, 'm> {
@@ -43,11 +97,30 @@ pub struct Lower<'a, 'b, 'm> {
     /// Parameters (`(0, n)`) and variables (`(1, def)`) already computed on every
     /// path to the current point: a slot's value never changes once computed, and a
     /// variable's cached value not within a record, so later uses reuse them.
-    known_args: HashMap<(u8, u32), Value>,
+    known_args: HashMap<Key, Value>,
+    /// What each `know` replaced, so a branch's additions can be undone (a copy of
+    /// the map per branch would make the lowering quadratic).
+    undo: Vec<(Key, Option<Value>)>,
+    /// Values that are numbers (made by [`Lower::number`]).
+    numbers: HashMap<Value, f64>,
+    /// Inlined calls: frame `k >= 1` is `frames[k - 1]`; frame 0 is the activation
+    /// the generated function runs in (`block`, `owner`).
+    frames: Vec<Inline<'m>>,
+    /// The frame whose parameters `Arg` nodes name.
+    cur: u32,
+    /// Inlined parameters computed somewhere already emitted: a use elsewhere must
+    /// test the flag (those never computed before are computed without a test).
+    maybe_computed: HashSet<(u32, u32)>,
     abort: Option<ir::Block>,
     /// A variable body's abort path: the block, the cache, the slot's offset and
     /// the stamp to put back; emitted after the body.
     restore: Option<(ir::Block, Value, i32, Value)>,
+    /// The abort paths of inlined variable bodies: as `restore`, then on to the
+    /// abort path that was in force around the body.
+    restores: Vec<(ir::Block, Value, i32, Value, ir::Block)>,
+    /// Variables whose bodies are being inlined (a body refers to itself, or to a
+    /// variable around it, through the cache as usual).
+    inlining_vars: Vec<DefId>,
 }
 
 fn mem() -> MemFlagsData {
@@ -80,8 +153,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             uniform: None,
             thunk_sig: None,
             known_args: HashMap::new(),
+            undo: Vec::new(),
+            numbers: HashMap::new(),
+            frames: Vec::new(),
+            cur: 0,
+            maybe_computed: HashSet::new(),
             abort: None,
             restore: None,
+            restores: Vec::new(),
+            inlining_vars: Vec::new(),
         };
         let v = match job {
             Job::Var(d) => lw.var_body(d)?,
@@ -95,6 +175,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             },
         };
         lw.b.ins().return_(&[v]);
+        for (block, cache, off, before, then) in std::mem::take(&mut lw.restores) {
+            lw.b.switch_to_block(block);
+            lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
+            lw.b.ins().jump(then, &[]);
+        }
         if let Some((block, cache, off, before)) = lw.restore {
             lw.b.switch_to_block(block);
             lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
@@ -277,6 +362,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     // ---- function bodies ------------------------------------------------------------
 
     fn func_body(&mut self, def: DefId) -> R<Value> {
+        self.st.compiled_defs.insert(def);
         let sym = self.st.module.def(def).sym.0;
         self.stack_check(sym);
         let d = self.add_depth(1);
@@ -315,6 +401,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let d = module.def(def);
         let sym = d.sym.0;
         let (_, idx) = self.st.var_fn(def)?;
+        self.st.compiled_defs.insert(def);
         self.stack_check(sym);
         if is_constant(module, def) && self.st.warn_nonconstant {
             let w = self.i32c(W_NONCONSTANT);
@@ -356,8 +443,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     // ---- expressions ----------------------------------------------------------------
 
     fn expr(&mut self, e: &'m Expr) -> R<Value> {
+        if !matches!(e.node, Node::Num(_))
+            && let Some(v) = self.const_value(e, CONST_DEPTH)
+        {
+            return Ok(self.number(v));
+        }
         Ok(match &e.node {
-            Node::Num(v) => self.f64c(*v),
+            Node::Num(v) => self.number(*v),
             Node::Chan(n) => {
                 if *n < 1 {
                     self.fail(E_ILLEGAL_CHANNEL, NO_SYM)
@@ -369,18 +461,21 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 }
             }
             Node::Var(s) => self.variable(*s)?,
-            Node::Arg(n) => self.argument(*n),
+            Node::Arg(n) if self.cur == 0 => self.argument(*n),
+            Node::Arg(n) => self.inline_argument(*n)?,
             Node::Neg(a) => {
                 let x = self.expr(a)?;
-                self.b.ins().fneg(x)
+                self.memo(Key::Op(OP_NEG, x, x), |lw| lw.b.ins().fneg(x))
             }
             // Summed from 0 as calexpr.c `eadd` does: `-0 + -0` is 0.
             Node::Sum(v) => {
-                let mut acc = self.f64c(0.0);
+                let mut acc = self.number(0.0);
                 for x in v {
                     let x = self.expr(x)?;
-                    let r = self.b.ins().fadd(acc, x);
-                    acc = self.nan_first(acc, x, r);
+                    acc = self.memo(Key::Op(OP_ADD, acc, x), |lw| {
+                        let r = lw.b.ins().fadd(acc, x);
+                        lw.nan_first(acc, x, r)
+                    });
                 }
                 acc
             }
@@ -391,23 +486,25 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 for x in v {
                     let x = self.expr(x)?;
                     acc = Some(match acc {
-                        Some(a) => {
-                            let r = self.b.ins().fmul(a, x);
-                            self.nan_first(a, x, r)
-                        }
+                        Some(a) => self.memo(Key::Op(OP_MUL, a, x), |lw| {
+                            let r = lw.b.ins().fmul(a, x);
+                            lw.nan_first(a, x, r)
+                        }),
                         None => x,
                     });
                 }
                 match acc {
                     Some(a) => a,
-                    None => self.f64c(1.0),
+                    None => self.number(1.0),
                 }
             }
             Node::Sub(a, b) => {
                 let x = self.expr(a)?;
                 let y = self.expr(b)?;
-                let r = self.b.ins().fsub(x, y);
-                self.nan_first(x, y, r)
+                self.memo(Key::Op(OP_SUB, x, y), |lw| {
+                    let r = lw.b.ins().fsub(x, y);
+                    lw.nan_first(x, y, r)
+                })
             }
             Node::Div(a, b) => self.divide(a, b)?,
             Node::Pow(a, b) => self.power(a, b)?,
@@ -418,12 +515,68 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         })
     }
 
+    /// A number in an expression (one value per number in each region of code, so
+    /// operations on it can be recognised as the same).
+    fn number(&mut self, v: f64) -> Value {
+        self.memo(Key::Num(v.to_bits()), |lw| {
+            let c = lw.f64c(v);
+            lw.numbers.insert(c, v);
+            c
+        })
+    }
+
+    /// Whether a value is a number that is not NaN (its NaN test is then known).
+    fn not_nan(&self, v: Value) -> bool {
+        self.numbers.get(&v).is_some_and(|x| !x.is_nan())
+    }
+
+    /// Record that `key` is computed, as `v`, on every path from here.
+    fn know(&mut self, key: Key, v: Value) {
+        let old = self.known_args.insert(key, v);
+        self.undo.push((key, old));
+    }
+
+    /// The state of `known_args` before a branch, for [`Lower::rewind`].
+    fn mark(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Forget what was learned since `mark` (at the end of a branch).
+    fn rewind(&mut self, mark: usize) {
+        while self.undo.len() > mark {
+            let Some((key, old)) = self.undo.pop() else {
+                break;
+            };
+            match old {
+                Some(v) => self.known_args.insert(key, v),
+                None => self.known_args.remove(&key),
+            };
+        }
+    }
+
+    /// The value already computed for `key` on every path here, or `make`'s.
+    fn memo(&mut self, key: Key, make: impl FnOnce(&mut Self) -> Value) -> Value {
+        if let Some(&v) = self.known_args.get(&key) {
+            return v;
+        }
+        let v = make(self);
+        self.know(key, v);
+        v
+    }
+
     /// `Evaluator`'s `nan_first`: with a NaN operand, the first NaN operand itself
     /// (x86 keeps the destination's NaN, and the order is the reference rcalc's);
     /// otherwise the computed result.
     fn nan_first(&mut self, first: Value, second: Value, result: Value) -> Value {
-        let second_nan = self.b.ins().fcmp(FloatCC::Unordered, second, second);
-        let r = self.b.ins().select(second_nan, second, result);
+        let r = if self.not_nan(second) {
+            result
+        } else {
+            let second_nan = self.b.ins().fcmp(FloatCC::Unordered, second, second);
+            self.b.ins().select(second_nan, second, result)
+        };
+        if self.not_nan(first) {
+            return r;
+        }
         let first_nan = self.b.ins().fcmp(FloatCC::Unordered, first, first);
         self.b.ins().select(first_nan, first, r)
     }
@@ -433,9 +586,12 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// without evaluating the numerator.
     fn divide(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
         let den = self.expr(b)?;
-        if b.as_num().is_some_and(|v| v != 0.0 && !v.is_nan()) {
+        if self
+            .const_value(b, CONST_DEPTH)
+            .is_some_and(|v| v != 0.0 && !v.is_nan())
+        {
             let num = self.expr(a)?;
-            return Ok(self.b.ins().fdiv(num, den));
+            return Ok(self.memo(Key::Op(OP_DIV, num, den), |lw| lw.b.ins().fdiv(num, den)));
         }
         let zero = self.f64c(0.0);
         let is_zero = self.b.ins().fcmp(FloatCC::UnorderedOrEqual, den, zero);
@@ -447,9 +603,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.set_errno(ERRNO_RANGE);
         self.jump_with(j, den);
         self.b.switch_to_block(nz);
-        let known = self.known_args.clone();
+        let known = self.mark();
         let num = self.expr(a)?;
-        self.known_args = known;
+        self.rewind(known);
         let q = self.b.ins().fdiv(num, den);
         self.jump_with(j, q);
         self.b.switch_to_block(j);
@@ -462,9 +618,30 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// to round as a product does, and results must equal the interpreter's.
     fn power(&mut self, a: &'m Expr, b: &'m Expr) -> R<Value> {
         self.set_errno(ERRNO_NONE);
+        let pure = self.pure_ready(a) && self.pure_ready(b);
+        if pure
+            && let (Some(x), Some(y)) = (
+                self.const_value(a, CONST_DEPTH),
+                self.const_value(b, CONST_DEPTH),
+            )
+            && x.powf(y).is_finite()
+        {
+            return Ok(self.f64c(x.powf(y)));
+        }
         let y = self.expr(b)?;
         let x = self.expr(a)?;
-        let d = self.call_import_f64("radc_pow", &[x, y]);
+        let d = match self.known_args.get(&Key::Pow(x, y)) {
+            Some(&d) => d,
+            None => {
+                let d = self.call_import_f64("radc_pow", &[x, y]);
+                self.know(Key::Pow(x, y), d);
+                d
+            }
+        };
+        // As for library functions: pure operands leave `errno` clear.
+        if pure && self.st.policy != MathErrors::NonFinite {
+            return Ok(d);
+        }
         self.nonfinite(d);
         let errno = self.load_raw(types::I64, OFF_ERRNO);
         let (j, out) = self.join();
@@ -516,6 +693,18 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         if let Node::Num(v) = module.def(def).body.node {
             return Ok(self.f64c(v));
         }
+        // (Constants that warn on every read are never known.)
+        if let Some(&v) = self.known_args.get(&Key::Var(def.0)) {
+            return Ok(v);
+        }
+        if !self.inlining_vars.contains(&def)
+            && self.inlining_vars.len() < INLINE_VAR_NESTING
+            && self.st.var_inlinable(def)
+        {
+            let v = self.inline_variable(def)?;
+            self.know(Key::Var(def.0), v);
+            return Ok(v);
+        }
         let (fid, idx) = self.st.var_fn(def)?;
         let f = self.func_ref(fid);
         if is_constant(module, def) && self.st.warn_nonconstant {
@@ -525,12 +714,53 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             self.check_failed();
             return Ok(v);
         }
-        if let Some(&v) = self.known_args.get(&(1, def.0)) {
+        if let Some(&v) = self.known_args.get(&Key::Var(def.0)) {
             return Ok(v);
         }
         let v = self.cached_variable(def, f, idx);
-        self.known_args.insert((1, def.0), v);
+        self.know(Key::Var(def.0), v);
         Ok(v)
+    }
+
+    /// [`Lower::var_body`] inlined at a use: the cached value if fresh, else the body
+    /// evaluated here (at top level: a variable's body has no parameters) with the
+    /// stamp set first and put back if a fatal error aborts it.
+    fn inline_variable(&mut self, def: DefId) -> R<Value> {
+        self.st.compiled_defs.insert(def);
+        let idx = self.st.var_slot(def);
+        let fresh = self.fresh(def, idx);
+        let (j, out) = self.join();
+        let hit = self.b.create_block();
+        let miss = self.b.create_block();
+        self.b.ins().brif(fresh, hit, &[], miss, &[]);
+        self.b.switch_to_block(hit);
+        let v = self.cached_value(idx);
+        self.jump_with(j, v);
+        self.b.switch_to_block(miss);
+        let known = self.mark();
+        let tick = self.load_raw(types::I64, OFF_CLOCK);
+        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let off = idx as i32 * CACHED_SIZE;
+        let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
+        self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
+        let outer = self.abort_block();
+        let restore = self.b.create_block();
+        self.b.set_cold_block(restore);
+        self.abort = Some(restore);
+        self.inlining_vars.push(def);
+        let here = std::mem::replace(&mut self.cur, 0);
+        let module = self.st.module;
+        let v = self.expr(&module.def(def).body);
+        self.cur = here;
+        self.inlining_vars.pop();
+        let v = v?;
+        self.abort = Some(outer);
+        self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
+        self.restores.push((restore, cache, off, before, outer));
+        self.rewind(known);
+        self.jump_with(j, v);
+        self.b.switch_to_block(j);
+        Ok(out)
     }
 
     /// The inline freshness test, calling the variable's function on a miss.
@@ -555,11 +785,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// calfunc.c `argument`: parameter `n`, computed once per call in the caller's
     /// context (one level less deep).
     fn argument(&mut self, n: u32) -> Value {
-        if let Some(&v) = self.known_args.get(&(0, n)) {
+        if let Some(&v) = self.known_args.get(&Key::Arg(0, n)) {
             return v;
         }
         let v = self.compute_argument(n);
-        self.known_args.insert((0, n), v);
+        self.know(Key::Arg(0, n), v);
         v
     }
 
@@ -623,6 +853,100 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(ok);
     }
 
+    /// Parameter `n` of the inlined call `self.cur`: calfunc.c `argument` as
+    /// [`Lower::argument`] does it, with the argument's expression lowered in place
+    /// (in the caller's frame, one level less deep) instead of called as a thunk.
+    fn inline_argument(&mut self, n: u32) -> R<Value> {
+        let k = self.cur;
+        let frame = &self.frames[k as usize - 1];
+        let (args, parent, sym) = (frame.args, frame.parent, frame.sym);
+        let Some(arg) = (n as usize).checked_sub(1).and_then(|i| args.get(i)) else {
+            return Ok(self.fail(E_TOO_FEW, sym));
+        };
+        if let Some(&v) = self.known_args.get(&Key::Arg(k, n)) {
+            return Ok(v);
+        }
+        let (flag, value) = frame.vars[n as usize - 1];
+        let v = if self.maybe_computed.insert((k, n)) {
+            self.inline_compute(parent, arg)?
+        } else {
+            let done = self.b.use_var(flag);
+            let (j, out) = self.join();
+            let have = self.b.create_block();
+            let compute = self.b.create_block();
+            self.b.ins().brif(done, have, &[], compute, &[]);
+            self.b.switch_to_block(have);
+            let v = self.b.use_var(value);
+            self.jump_with(j, v);
+            self.b.switch_to_block(compute);
+            let known = self.mark();
+            let v = self.inline_compute(parent, arg)?;
+            self.rewind(known);
+            self.jump_with(j, v);
+            self.b.switch_to_block(j);
+            out
+        };
+        let one = self.b.ins().iconst(types::I8, 1);
+        self.b.def_var(flag, one);
+        self.b.def_var(value, v);
+        self.know(Key::Arg(k, n), v);
+        Ok(v)
+    }
+
+    fn inline_compute(&mut self, parent: u32, arg: &'m Expr) -> R<Value> {
+        self.add_depth(-1);
+        let here = std::mem::replace(&mut self.cur, parent);
+        let v = self.expr(arg);
+        self.cur = here;
+        let v = v?;
+        self.add_depth(1);
+        Ok(v)
+    }
+
+    /// A user function call inlined: `Evaluator::call`'s depth bookkeeping around
+    /// the body, lowered in a new frame whose parameters are the call's arguments.
+    fn inline_call(&mut self, def: DefId, sym: u32, args: &'m [Expr]) -> R<Value> {
+        self.st.compiled_defs.insert(def);
+        let d = self.add_depth(1);
+        self.depth_event(sym, d);
+        let zero = self.b.ins().iconst(types::I8, 0);
+        let nothing = self.f64c(0.0);
+        let mut vars = Vec::with_capacity(args.len());
+        for _ in args {
+            let flag = self.b.declare_var(types::I8);
+            let value = self.b.declare_var(types::F64);
+            self.b.def_var(flag, zero);
+            self.b.def_var(value, nothing);
+            vars.push((flag, value));
+        }
+        self.frames.push(Inline {
+            args,
+            parent: self.cur,
+            sym,
+            vars,
+        });
+        let id = self.frames.len() as u32;
+        let here = std::mem::replace(&mut self.cur, id);
+        let module = self.st.module;
+        let v = self.expr(&module.def(def).body);
+        self.cur = here;
+        let v = v?;
+        self.add_depth(-1);
+        Ok(v)
+    }
+
+    /// Inlined code never builds argument blocks (see `State::inlinable`); this
+    /// guards the rule.
+    fn in_own_frame(&self) -> R<()> {
+        if self.cur == 0 {
+            Ok(())
+        } else {
+            Err(JitError::Backend(
+                "internal: an argument block inside inlined code".into(),
+            ))
+        }
+    }
+
     // ---- calls ------------------------------------------------------------------------
 
     /// calfunc.c `efunc` by name: a user function if the name's definition is one,
@@ -633,6 +957,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .current_def(s)
             .filter(|&d| module.def(d).is_function())
         {
+            if self.st.inlinable(def) {
+                let sym = module.def(def).sym.0;
+                return self.inline_call(def, sym, args);
+            }
+            self.in_own_frame()?;
             let fid = self.st.user_fn(def)?;
             let fill = self.st.uses_fn_values(def);
             let block = self.build_block(args, CalleeName::Static(s), fill)?;
@@ -666,6 +995,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// A call through parameter `n`: calfunc.c `eargf`, resolved when the argument
     /// block was built, called here.
     fn call_arg(&mut self, n: u32, args: &'m [Expr]) -> R<Value> {
+        self.in_own_frame()?;
         let Some(block) = self.block else {
             return Ok(self.fail(E_NOT_FUNCTION, NO_SYM));
         };
@@ -726,6 +1056,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 self.b.ins().store(mem(), v, base, off + OFF_SLOT_VALUE);
                 let one = self.i64c(1);
                 self.b.ins().store(mem(), one, base, off + OFF_SLOT_STATE);
+            } else if self.pure_ready(a) {
+                // Evaluating it now is unobservable: no warning, error, errno or
+                // depth event can come of it, and it gives what the thunk would.
+                let v = self.expr(a)?;
+                self.b.ins().store(mem(), v, base, off + OFF_SLOT_VALUE);
+                let one = self.i64c(1);
+                self.b.ins().store(mem(), one, base, off + OFF_SLOT_STATE);
             } else if let Node::Chan(n @ 1..) = a.node {
                 let zero = self.i64c(0);
                 self.b.ins().store(mem(), zero, base, off + OFF_SLOT_STATE);
@@ -752,6 +1089,91 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             }
         }
         Ok(base)
+    }
+
+    /// The value of `e` if it is known while compiling and computing it has no
+    /// effect: numbers, variables defined as a number (read without a warning, see
+    /// [`Lower::variable`]), and the exact arithmetic of those, computed as the
+    /// interpreter computes it (a division only by a non-zero number).
+    fn const_value(&self, e: &Expr, depth: u32) -> Option<f64> {
+        let depth = depth.checked_sub(1)?;
+        let c = |x: &Expr| self.const_value(x, depth);
+        Some(match &e.node {
+            Node::Num(v) => *v,
+            Node::Var(s) => {
+                let module = self.st.module;
+                let d = module
+                    .current_def(*s)
+                    .filter(|&d| !module.def(d).is_function())?;
+                if self.st.host_vars.contains_key(&d) {
+                    return None;
+                }
+                module.def(d).body.as_num()?
+            }
+            Node::Neg(a) => -c(a)?,
+            Node::Sub(a, b) => {
+                let (x, y) = (c(a)?, c(b)?);
+                nan_first(x, y, x - y)
+            }
+            Node::Sum(v) => {
+                let mut sum = 0.0;
+                for x in v {
+                    let x = c(x)?;
+                    sum = nan_first(sum, x, sum + x);
+                }
+                sum
+            }
+            Node::Product(v) => {
+                let mut prod = 1.0;
+                for x in v {
+                    let x = c(x)?;
+                    prod = nan_first(prod, x, prod * x);
+                }
+                prod
+            }
+            Node::Div(a, b) => {
+                let den = c(b)?;
+                if den == 0.0 || den.is_nan() {
+                    return None;
+                }
+                c(a)? / den
+            }
+            _ => return None,
+        })
+    }
+
+    /// Whether `e` can be computed here with no effect at all: numbers, parameters
+    /// and variables already computed on every path to this point, and the
+    /// arithmetic of those that cannot warn (`-`, `+`, `*`, `/` by a non-zero number).
+    fn pure_ready(&self, e: &Expr) -> bool {
+        self.pure_within(e, 16)
+    }
+
+    fn pure_within(&self, e: &Expr, depth: u32) -> bool {
+        let Some(depth) = depth.checked_sub(1) else {
+            return false;
+        };
+        if self.const_value(e, CONST_DEPTH).is_some() {
+            return true;
+        }
+        match &e.node {
+            Node::Num(_) => true,
+            Node::Div(a, b) => {
+                self.const_value(b, CONST_DEPTH)
+                    .is_some_and(|v| v != 0.0 && !v.is_nan())
+                    && self.pure_within(a, depth)
+            }
+            Node::Arg(n) => self.known_args.contains_key(&Key::Arg(self.cur, *n)),
+            Node::Var(s) => self
+                .st
+                .module
+                .current_def(*s)
+                .is_some_and(|d| self.known_args.contains_key(&Key::Var(d.0))),
+            Node::Neg(a) => self.pure_within(a, depth),
+            Node::Sub(a, b) => self.pure_within(a, depth) && self.pure_within(b, depth),
+            Node::Sum(v) | Node::Product(v) => v.iter().all(|x| self.pure_within(x, depth)),
+            _ => false,
+        }
     }
 
     /// An argument expression as a function value (calfunc.c `eargf` rules).
@@ -886,9 +1308,31 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn builtin(&mut self, b: Builtin, sym: u32, args: &'m [Expr]) -> R<Value> {
+        if let Some(v) = self.pure_builtin(b, sym, args)? {
+            return Ok(v);
+        }
         self.lib_enter(sym);
         self.set_errno(ERRNO_NONE);
         let d = match b {
+            // A number for condition: only the side taken is generated (the
+            // interpreter evaluates the number, with no effect, then that side).
+            Builtin::If
+                if args.len() >= 3
+                    && let Some(c) =
+                        args.first().and_then(|a| self.const_value(a, CONST_DEPTH)) =>
+            {
+                self.lib_arg(args, if c > 0.0 { 1 } else { 2 }, sym)?
+            }
+            Builtin::Select
+                if let Some(n) = args
+                    .first()
+                    .and_then(|a| self.const_value(a, CONST_DEPTH))
+                    .filter(|a| *a >= 0.5)
+                    .map(c_round)
+                    .filter(|&n| n >= 1 && n < args.len() as i64) =>
+            {
+                self.lib_arg(args, n as usize, sym)?
+            }
             Builtin::If => {
                 let c = self.lib_arg(args, 0, sym)?;
                 let zero = self.f64c(0.0);
@@ -897,15 +1341,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 let yes = self.b.create_block();
                 let no = self.b.create_block();
                 self.b.ins().brif(gt, yes, &[], no, &[]);
-                let known = self.known_args.clone();
+                let known = self.mark();
                 self.b.switch_to_block(yes);
                 let v = self.lib_arg(args, 1, sym)?;
                 self.jump_with(j, v);
-                self.known_args = known.clone();
+                self.rewind(known);
                 self.b.switch_to_block(no);
                 let v = self.lib_arg(args, 2, sym)?;
                 self.jump_with(j, v);
-                self.known_args = known;
+                self.rewind(known);
                 self.b.switch_to_block(j);
                 out
             }
@@ -930,33 +1374,92 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 let y = self.lib_arg(args, 0, sym)?;
                 self.call_import_f64("radc_atan2", &[y, x])
             }
-            // Exact operations: the hardware instruction is the C library's result,
-            // except that the reference rcalc's floor and ceil never give -0.
-            Builtin::Floor | Builtin::Ceil | Builtin::Sqrt => {
-                let x = self.lib_arg(args, 0, sym)?;
-                match b {
-                    Builtin::Floor | Builtin::Ceil => {
-                        let r = if b == Builtin::Floor {
-                            self.b.ins().floor(x)
-                        } else {
-                            self.b.ins().ceil(x)
-                        };
-                        let zero = self.f64c(0.0);
-                        let is_zero = self.b.ins().fcmp(FloatCC::Equal, r, zero);
-                        self.b.ins().select(is_zero, zero, r)
-                    }
-                    _ => self.b.ins().sqrt(x),
-                }
-            }
+            // Exact operations (floor, ceil, sqrt) are the hardware instruction, the
+            // others calls of the very functions the interpreter calls.
             other => {
                 let x = self.lib_arg(args, 0, sym)?;
-                match unary_symbol(other) {
-                    Some(name) => self.call_import_f64(name, &[x]),
-                    None => self.f64c(0.0),
-                }
+                self.unary(other, x)
             }
         };
         Ok(self.lib_result(d, sym))
+    }
+
+    /// A C library function whose arguments are [`Lower::pure_ready`]: evaluating
+    /// them leaves `errno` as the call cleared it, so without the non-finite policy
+    /// the result is the function's value, with no warning to test for. With
+    /// numbers for arguments the value is computed now (by the very function the
+    /// generated code would call) when finite; a one-argument function already
+    /// called on the same value reuses that result. The depth check stays: it is
+    /// what the interpreter does on entering any call.
+    fn pure_builtin(&mut self, b: Builtin, sym: u32, args: &'m [Expr]) -> R<Option<Value>> {
+        let arity = match b {
+            Builtin::If | Builtin::Select | Builtin::Max | Builtin::Min => return Ok(None),
+            Builtin::Atan2 => 2,
+            _ => 1,
+        };
+        let Some(used) = args.get(..arity) else {
+            return Ok(None);
+        };
+        if !used.iter().all(|a| self.pure_ready(a)) {
+            return Ok(None);
+        }
+        self.lib_enter(sym);
+        self.set_errno(ERRNO_NONE);
+        let consts: Option<Vec<f64>> = used
+            .iter()
+            .map(|a| self.const_value(a, CONST_DEPTH))
+            .collect();
+        if let Some(c) = consts {
+            let d = match b {
+                Builtin::Atan2 => c[0].atan2(c[1]),
+                _ => b.unary(c[0]).unwrap_or(0.0),
+            };
+            if d.is_finite() {
+                return Ok(Some(self.f64c(d)));
+            }
+        }
+        let d = if b == Builtin::Atan2 {
+            let x = self.expr(&used[1])?;
+            let y = self.expr(&used[0])?;
+            self.call_import_f64("radc_atan2", &[y, x])
+        } else {
+            let x = self.expr(&used[0])?;
+            self.unary(b, x)
+        };
+        Ok(Some(if self.st.policy == MathErrors::NonFinite {
+            self.lib_result(d, sym)
+        } else {
+            d
+        }))
+    }
+
+    /// A one-argument C library function, inline where it is one instruction.
+    fn unary(&mut self, b: Builtin, x: Value) -> Value {
+        match b {
+            Builtin::Floor | Builtin::Ceil => {
+                let r = if b == Builtin::Floor {
+                    self.b.ins().floor(x)
+                } else {
+                    self.b.ins().ceil(x)
+                };
+                let zero = self.f64c(0.0);
+                let is_zero = self.b.ins().fcmp(FloatCC::Equal, r, zero);
+                self.b.ins().select(is_zero, zero, r)
+            }
+            Builtin::Sqrt => self.b.ins().sqrt(x),
+            other => {
+                let key = Key::Call(other, x);
+                if let Some(&d) = self.known_args.get(&key) {
+                    return d;
+                }
+                let d = match unary_symbol(other) {
+                    Some(name) => self.call_import_f64(name, &[x]),
+                    None => self.f64c(0.0),
+                };
+                self.know(key, d);
+                d
+            }
+        }
     }
 
     /// calfunc.c `l_select`: the rounded index picks one argument, evaluated alone;
@@ -1017,14 +1520,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn select_case(&mut self, args: &'m [Expr], k: usize, sym: u32, j: ir::Block) -> R<()> {
-        let known = self.known_args.clone();
+        let known = self.mark();
         let v = if k == 0 {
             self.f64c((args.len() - 1) as f64)
         } else {
             self.lib_arg(args, k, sym)?
         };
         self.jump_with(j, v);
-        self.known_args = known;
+        self.rewind(known);
         Ok(())
     }
 }

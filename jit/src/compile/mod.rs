@@ -237,7 +237,7 @@ impl Jit {
             policy: self.policy,
         };
         Ok(Compiled {
-            functions: state.var_fns.len() + state.user_fns.len(),
+            functions: state.compiled_defs.len(),
             entry_names: entries
                 .iter()
                 .map(|e| e.to_string())
@@ -315,7 +315,8 @@ impl Compiled {
         self.host_names.iter().position(|n| n == name)
     }
 
-    /// Variable and function bodies compiled (thunks not counted).
+    /// Variable and function definitions compiled, as functions or inlined into
+    /// their uses (thunks not counted).
     pub fn function_count(&self) -> usize {
         self.functions
     }
