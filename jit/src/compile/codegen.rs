@@ -26,12 +26,15 @@ pub const MAX_NODES: usize = 2_000_000;
 /// User functions up to this many expression nodes (callees they inline counted in)
 /// are inlined at their call sites instead of called: no argument block, no thunks,
 /// no indirect calls, and the optimiser sees through them.
-pub const INLINE_NODES: usize = 160;
+pub const INLINE_NODES: usize = 60;
 
 /// `=` variables up to this many nodes are inlined at their uses, up to
-/// [`INLINE_VAR_NESTING`] variables within each other.
-pub const INLINE_VAR_NODES: usize = 48;
-pub const INLINE_VAR_NESTING: usize = 6;
+/// [`INLINE_VAR_NESTING`] variables within each other. Off (0): inlining variables
+/// multiplies code along chains of definitions, and on library files such as
+/// xyz_rgb.cal took compilation from 30 ms to 2 s, the cost of a whole render's
+/// evaluations; function inlining is held to 60 nodes for the same reason.
+pub const INLINE_VAR_NODES: usize = 0;
+pub const INLINE_VAR_NESTING: usize = 0;
 
 /// One function to generate.
 pub enum Job<'m> {
