@@ -29,12 +29,12 @@ pub const MAX_NODES: usize = 2_000_000;
 pub const INLINE_NODES: usize = 60;
 
 /// `=` variables up to this many nodes are inlined at their uses, up to
-/// [`INLINE_VAR_NESTING`] variables within each other. Off (0): inlining variables
+/// [`INLINE_VAR_NESTING`] variables within each other. Off (no variable has 0 nodes): inlining variables
 /// multiplies code along chains of definitions, and on library files such as
 /// xyz_rgb.cal took compilation from 30 ms to 2 s, the cost of a whole render's
 /// evaluations; function inlining is held to 60 nodes for the same reason.
 pub const INLINE_VAR_NODES: usize = 0;
-pub const INLINE_VAR_NESTING: usize = 0;
+pub const INLINE_VAR_NESTING: usize = 1;
 
 /// One function to generate.
 pub enum Job<'m> {
