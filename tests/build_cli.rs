@@ -3,21 +3,13 @@
 //! files are refused with a message naming the file and the problem; and the render
 //! front end's own checks (PNG output, `-e`, bad sizes and views).
 
-use std::io::Write;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
 fn radc(args: &[&str], input: &[u8]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("radc runs");
-    // A refused scene exits before reading its input: a broken pipe is expected then.
-    let _ = child.stdin.take().expect("stdin").write_all(input);
-    child.wait_with_output().expect("radc finishes")
+    common::run(common::radc(args), input)
 }
 
 fn stderr(o: &Output) -> String {

@@ -1,38 +1,21 @@
 //! End-to-end tests of `radc calc`: the calcomp-semantics goldens produced by real
 //! rcalc (tests/oracle/regen_cal_semantics.py), plus the command's own behaviour.
 
-use std::io::Write;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
 fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cal-semantics")
 }
 
 fn radc_calc(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
-        .arg("calc")
-        .args(args)
+    let mut cmd = common::radc(["calc"]);
+    cmd.args(args)
         .current_dir(data_dir())
-        .env("RAYPATH", data_dir())
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("radc runs");
-    // Written from another thread: a big input must not wait for output to be read.
-    let writer = child.stdin.take().map(|mut input| {
-        let text = stdin.to_string();
-        // A command that fails early may close its input: that is not this test's concern.
-        std::thread::spawn(move || {
-            let _ = input.write_all(text.as_bytes());
-        })
-    });
-    let output = child.wait_with_output().expect("radc finishes");
-    if let Some(w) = writer {
-        let _ = w.join();
-    }
-    output
+        .env("RAYPATH", data_dir());
+    common::run(cmd, stdin.as_bytes())
 }
 
 #[test]

@@ -12,10 +12,11 @@
 //! `-I` measures 1e-4 in front of the given point, along the normal, in both programs;
 //! the formulas use that point.
 
+mod common;
+
 use std::f64::consts::PI;
-use std::io::Write;
+
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
 
 use serde_json::Value;
 
@@ -63,22 +64,9 @@ fn radc(c: &Value) -> Vec<f64> {
             input.push('\n');
         }
     }
-    let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
-        .args(["trace", "-h", "-I", "-ov"])
-        .args(&options)
-        .arg(data().join(format!("{id}.rad")))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("radc runs");
-    child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(input.as_bytes())
-        .expect("write rays");
-    let out = child.wait_with_output().expect("radc finishes");
+    let mut cmd = common::radc(["trace", "-h", "-I", "-ov"]);
+    cmd.args(&options).arg(data().join(format!("{id}.rad")));
+    let out = common::run(cmd, input.as_bytes());
     assert!(
         out.status.success(),
         "{}",

@@ -1,29 +1,16 @@
 //! `radc trace -I` against closed-form illuminance. Each test states its formula.
 
+mod common;
+
 use std::f64::consts::PI;
-use std::io::Write;
+
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 fn trace(dir: &Path, scene: &str, options: &[&str], rays: &str) -> Vec<Vec<f64>> {
     std::fs::write(dir.join("scene.rad"), scene).expect("write scene");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
-        .arg("trace")
-        .arg("-h")
-        .args(options)
-        .arg(dir.join("scene.rad"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("radc runs");
-    child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(rays.as_bytes())
-        .expect("write rays");
-    let out = child.wait_with_output().expect("radc finishes");
+    let mut cmd = common::radc(["trace", "-h"]);
+    cmd.args(options).arg(dir.join("scene.rad"));
+    let out = common::run(cmd, rays.as_bytes());
     assert!(
         out.status.success(),
         "{}",
