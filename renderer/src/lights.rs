@@ -6,6 +6,7 @@
 
 use crate::materials::light::Spot;
 use crate::math::{FHUGE, FTINY, Vec3, normalize, perpendicular};
+use crate::solid_angle::DiskFrame;
 
 /// Radiance's `MAXSPART`: partitions per source, and the unit of partition coordinates.
 const MAXSPART: i32 = 64;
@@ -24,6 +25,9 @@ pub enum SourceShape {
         v: Vec3,
         /// A disk: samples are pulled in toward the rim's circle.
         circular: bool,
+        /// A parallelogram (`u`, `v` span exactly the polygon), so that the partitions
+        /// tile the source and `-dx+` can take each one's exact solid angle.
+        parallelogram: bool,
         /// Distance from the centre to the farthest point (`srad`).
         radius: f64,
     },
@@ -111,6 +115,7 @@ impl SourceShape {
             u,
             v,
             circular: false,
+            parallelogram: is_parallelogram(vertices),
             radius: vertices
                 .iter()
                 .map(|p| p.distance(center))
@@ -136,6 +141,7 @@ impl SourceShape {
             u,
             v,
             circular: true,
+            parallelogram: false,
             radius,
         }
     }
@@ -171,6 +177,16 @@ impl SourceShape {
     }
 }
 
+/// Whether four vertices form a parallelogram (opposite corners share a midpoint, to
+/// rounding).
+fn is_parallelogram(vertices: &[Vec3]) -> bool {
+    let [a, b, c, d] = vertices else {
+        return false;
+    };
+    let size = (*c - *a).length().max((*d - *b).length());
+    ((*a + *c) - (*b + *d)).length() <= 1e-9 * size
+}
+
 /// Half-extents of a square of `area` in the plane of `normal` (`setflatss`, without
 /// randomized orientation).
 fn square_extents(normal: Vec3, area: f64) -> (Vec3, Vec3) {
@@ -198,6 +214,144 @@ struct Part {
     size: [i32; 3],
 }
 
+/// The whole source as one partition.
+const WHOLE: Part = Part {
+    cent: [0; 3],
+    size: [MAXSPART; 3],
+};
+
+/// The sample for a flat region's vector solid angle `vs` (relative to `org`): its
+/// direction and length, and the distance to the source's plane that way; `None` when
+/// the region is seen edge-on.
+fn plane_sample(vs: Vec3, org: Vec3, center: Vec3, normal: Vec3) -> Option<SourceSample> {
+    let mut dir = vs;
+    let omega = normalize(&mut dir);
+    let cos = -dir.dot(normal);
+    if omega <= 0.0 || cos <= 0.0 {
+        return None;
+    }
+    Some(SourceSample {
+        dir,
+        omega,
+        dist: (org - center).dot(normal) / cos,
+    })
+}
+
+/// An annular sector of a disk source: `rho` in fractions of the radius, `phi` in
+/// radians from the frame's `e1` toward `e2`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct DiskCell {
+    rho: (f64, f64),
+    phi: (f64, f64),
+}
+
+impl DiskCell {
+    const WHOLE: DiskCell = DiskCell {
+        rho: (0.0, 1.0),
+        phi: (0.0, 2.0 * std::f64::consts::PI),
+    };
+
+    fn is_whole(&self) -> bool {
+        *self == DiskCell::WHOLE
+    }
+
+    /// Area as a fraction of the disk's.
+    fn area_fraction(&self) -> f64 {
+        let (r0, r1) = self.rho;
+        (r1 * r1 - r0 * r0) * (self.phi.1 - self.phi.0) / (2.0 * std::f64::consts::PI)
+    }
+
+    /// The centroid, as (fraction of the radius, angle).
+    fn centroid(&self) -> (f64, f64) {
+        let (r0, r1) = self.rho;
+        let half = 0.5 * (self.phi.1 - self.phi.0);
+        let rc =
+            2.0 / 3.0 * (r1 * r1 * r1 - r0 * r0 * r0) / (r1 * r1 - r0 * r0) * half.sin() / half;
+        (rc, self.phi.0 + half)
+    }
+
+    /// The two halves of equal area: across the radius or across the angle, whichever
+    /// side is longer.
+    fn split(&self) -> [DiskCell; 2] {
+        let (r0, r1) = self.rho;
+        let (p0, p1) = self.phi;
+        if r1 - r0 >= 0.5 * (r0 + r1) * (p1 - p0) {
+            let rm = (0.5 * (r0 * r0 + r1 * r1)).sqrt();
+            [
+                DiskCell {
+                    rho: (r0, rm),
+                    phi: self.phi,
+                },
+                DiskCell {
+                    rho: (rm, r1),
+                    phi: self.phi,
+                },
+            ]
+        } else {
+            let pm = 0.5 * (p0 + p1);
+            [
+                DiskCell {
+                    rho: self.rho,
+                    phi: (p0, pm),
+                },
+                DiskCell {
+                    rho: self.rho,
+                    phi: (pm, p1),
+                },
+            ]
+        }
+    }
+
+    /// The sample for this cell: toward its vector solid angle `V` when that direction
+    /// meets the cell (a sector need not be convex), else toward its centroid with the
+    /// part of `V` along that direction.
+    fn sample(&self, frame: &DiskFrame, org: Vec3, normal: Vec3) -> Option<SourceSample> {
+        let vs = frame.sector(self.rho, self.phi);
+        let s = plane_sample(vs, org, org + frame.center, normal)?;
+        let q = s.dir * s.dist - frame.center;
+        let rho = q.length() / frame.radius;
+        let tau = 2.0 * std::f64::consts::PI;
+        let phi = (q.dot(frame.e2).atan2(q.dot(frame.e1)) - self.phi.0).rem_euclid(tau);
+        let tol = 1e-9;
+        if rho >= self.rho.0 - tol
+            && rho <= self.rho.1 + tol
+            && phi <= self.phi.1 - self.phi.0 + tol
+        {
+            return Some(s);
+        }
+        let (rc, pc) = self.centroid();
+        let mut dir = frame.point(rc, pc);
+        let dist = normalize(&mut dir);
+        let omega = vs.dot(dir);
+        (omega > 0.0 && dist > 0.0).then_some(SourceSample { dir, omega, dist })
+    }
+}
+
+/// A disk source's partitions for `-dx+`: Radiance's rule for flat sources
+/// (`flt_partit`: halve while the point is nearer than `2 * weight / ds` half-widths,
+/// at most 64 pieces) applied to annular sectors of equal area, each piece's
+/// half-width taken as that of a square of its area (so the whole disk splits first
+/// exactly when Radiance splits its square of equal area).
+fn disk_cells(frame: &DiskFrame, weight: f64, ds: f64) -> Vec<DiskCell> {
+    let k = 2.0 * weight / ds;
+    let area = std::f64::consts::PI * frame.radius * frame.radius;
+    let mut out = Vec::new();
+    let mut stack = vec![(DiskCell::WHOLE, MAXSPART)];
+    while let Some((cell, mp)) = stack.pop() {
+        let (rc, pc) = cell.centroid();
+        let d2 = frame.point(rc, pc).length_squared();
+        let half2 = 0.25 * area * cell.area_fraction();
+        if mp < 2 || d2 >= k * k * half2 {
+            out.push(cell);
+            continue;
+        }
+        let [a, b] = cell.split();
+        stack.push((b, mp / 2));
+        stack.push((a, mp / 2));
+    }
+    out
+}
+
 impl Source {
     /// Whether a point is too far from a `glow` source to be lit by it.
     fn skipped_from(&self, org: Vec3) -> bool {
@@ -214,13 +368,43 @@ impl Source {
     /// The shadow-ray samples from `org` for a ray of weight `weight`, with `-ds`
     /// `size_ratio`, appended to `out`.
     pub fn samples(&self, org: Vec3, weight: f64, size_ratio: f64, out: &mut Vec<SourceSample>) {
-        self.jittered_samples(org, weight, size_ratio, None, out);
+        self.jittered_samples(org, weight, size_ratio, None, false, out);
     }
 
     /// [`Source::samples`] with `-dj`: `jitter` is the fraction of each partition a
     /// sample may move by from its centre (Radiance's `dstrsrc`) and the seed of the
-    /// moves; `None` keeps the centres.
+    /// moves; `None` keeps the centres. With `exact` (`-dx+`) and no jitter,
+    /// parallelograms, disks and distant sources are sampled with each partition's
+    /// exact solid angle ([`Source::exact_samples`]).
     pub fn jittered_samples(
+        &self,
+        org: Vec3,
+        weight: f64,
+        size_ratio: f64,
+        jitter: Option<(f64, u64)>,
+        exact: bool,
+        out: &mut Vec<SourceSample>,
+    ) {
+        if self.skipped_from(org) {
+            return;
+        }
+        let start = out.len();
+        if !(exact && jitter.is_none() && self.exact_samples(org, weight, size_ratio, out)) {
+            self.partition_samples(org, weight, size_ratio, jitter, out);
+        }
+        let mut kept = start;
+        for i in start..out.len() {
+            if let Some(s) = self.accepted(org, out[i]) {
+                out[kept] = s;
+                kept += 1;
+            }
+        }
+        out.truncate(kept);
+    }
+
+    /// Radiance's samples: each partition's centre (moved by the jitter), standing for
+    /// the partition's area times `cos / d^2` there.
+    fn partition_samples(
         &self,
         org: Vec3,
         weight: f64,
@@ -228,9 +412,6 @@ impl Source {
         jitter: Option<(f64, u64)>,
         out: &mut Vec<SourceSample>,
     ) {
-        if self.skipped_from(org) {
-            return;
-        }
         let parts = match &self.shape {
             SourceShape::Flat {
                 center,
@@ -254,47 +435,152 @@ impl Source {
                     None => return, // inside the cylinder's extent
                 }
             }
-            _ => vec![Part {
-                cent: [0; 3],
-                size: [MAXSPART; 3],
-            }],
+            _ => vec![WHOLE],
         };
         let np = parts.len();
-        let local = !matches!(self.shape, SourceShape::Distant { .. });
         for (k, p) in parts.into_iter().enumerate() {
             let offset = jitter.map(|(j, seed)| {
                 let seed = crate::random::derive(seed, k as u64);
                 [0u64, 1, 2].map(|a| j * (1.0 - 2.0 * crate::random::uniform(seed, a)))
             });
-            let Some(mut s) = self.sample(org, p, np, offset) else {
-                continue;
-            };
-            if let Some(prox) = self.proximity
-                && s.dist > prox
-                && local
-            {
-                continue;
+            if let Some(s) = self.sample(org, p, np, offset) {
+                out.push(s);
             }
-            if let Some((center, area)) = self.beam
-                && !local
-            {
-                let to = center - org;
-                let along = s.dir.dot(to);
-                if std::f64::consts::PI * (to.length_squared() - along * along) > area {
-                    continue;
+        }
+    }
+
+    /// The sample as the source's limits leave it: `None` beyond a `glow`'s reach,
+    /// outside a distant virtual source's beam or a spotlight's cone; a spotlight's
+    /// solid angle as seen from its focus.
+    fn accepted(&self, org: Vec3, mut s: SourceSample) -> Option<SourceSample> {
+        let local = !matches!(self.shape, SourceShape::Distant { .. });
+        if let Some(prox) = self.proximity
+            && s.dist > prox
+            && local
+        {
+            return None;
+        }
+        if let Some((center, area)) = self.beam
+            && !local
+        {
+            let to = center - org;
+            let along = s.dir.dot(to);
+            if std::f64::consts::PI * (to.length_squared() - along * along) > area {
+                return None;
+            }
+        }
+        if let Some(spot) = &self.spot
+            && local
+        {
+            if spot.excludes(s.dir) {
+                return None;
+            }
+            // The solid angle as seen from the spot's virtual focus (srcray).
+            let d = s.dist + spot.focus;
+            s.omega *= s.dist * s.dist / (d * d);
+        }
+        Some(s)
+    }
+
+    /// `-dx+`: samples that stand for each partition's exact vector solid angle `V`
+    /// (see [`crate::solid_angle`]): direction `V / |V|`, solid angle `|V|`, so that a
+    /// Lambertian surface receives exactly a fully visible partition's irradiance,
+    /// where Radiance's centre samples are off by the order of `(size / distance)^2`.
+    /// Parallelograms keep Radiance's partitions (`flat_parts`); disks are split into
+    /// annular sectors by the same rule ([`disk_cells`]); a distant source is one cap.
+    /// False for the shapes without an exact treatment (spheres, whose one sample is
+    /// already exact for a fully visible sphere above the horizon, cylinders, other
+    /// polygons), which keep Radiance's samples.
+    fn exact_samples(
+        &self,
+        org: Vec3,
+        weight: f64,
+        size_ratio: f64,
+        out: &mut Vec<SourceSample>,
+    ) -> bool {
+        match &self.shape {
+            SourceShape::Flat {
+                center,
+                normal,
+                u,
+                v,
+                parallelogram: true,
+                ..
+            } => {
+                if (org - *center).dot(*normal) <= 0.0 {
+                    return true; // behind a flat source
                 }
-            }
-            if let Some(spot) = &self.spot
-                && local
-            {
-                if spot.excludes(s.dir) {
-                    continue;
+                let parts = if size_ratio > FTINY {
+                    flat_parts(org, *center, *u, *v, weight, size_ratio)
+                } else {
+                    vec![WHOLE]
+                };
+                let m = f64::from(MAXSPART);
+                for p in parts {
+                    let lo = |i: usize| f64::from(p.cent[i] - p.size[i]) / m;
+                    let hi = |i: usize| f64::from(p.cent[i] + p.size[i]) / m;
+                    let at = |x: f64, y: f64| *center + *u * x + *v * y - org;
+                    let corners = [
+                        at(lo(0), lo(1)),
+                        at(hi(0), lo(1)),
+                        at(hi(0), hi(1)),
+                        at(lo(0), hi(1)),
+                    ];
+                    let vs = crate::solid_angle::polygon(&corners, -*normal);
+                    // A parallelogram is convex: V / |V| points into it.
+                    if let Some(s) = plane_sample(vs, org, *center, *normal) {
+                        out.push(s);
+                    }
                 }
-                // The solid angle as seen from the spot's virtual focus (srcray).
-                let d = s.dist + spot.focus;
-                s.omega *= s.dist * s.dist / (d * d);
+                true
             }
-            out.push(s);
+            SourceShape::Flat {
+                center,
+                normal,
+                radius,
+                circular: true,
+                ..
+            } => {
+                if (org - *center).dot(*normal) <= 0.0 {
+                    return true;
+                }
+                let Some(e1) = perpendicular(*normal) else {
+                    return true;
+                };
+                let frame = DiskFrame {
+                    center: *center - org,
+                    e1,
+                    e2: normal.cross(e1),
+                    radius: *radius,
+                };
+                if size_ratio <= FTINY {
+                    out.extend(plane_sample(frame.whole(), org, *center, *normal));
+                    return true;
+                }
+                for cell in disk_cells(&frame, weight, size_ratio) {
+                    if cell.is_whole() {
+                        // The disk is convex: V / |V| points into it.
+                        out.extend(plane_sample(frame.whole(), org, *center, *normal));
+                    } else {
+                        out.extend(cell.sample(&frame, org, *normal));
+                    }
+                }
+                true
+            }
+            SourceShape::Distant {
+                direction,
+                solid_angle,
+            } => {
+                // A cap of half-angle t: |V| = pi sin^2 t, Omega = 2 pi (1 - cos t).
+                let cos_t = 1.0 - solid_angle / (2.0 * std::f64::consts::PI);
+                out.push(SourceSample {
+                    dir: *direction,
+                    omega: std::f64::consts::PI * (1.0 - cos_t * cos_t).max(0.0),
+                    dist: FHUGE,
+                });
+                true
+            }
+            _ => false,
         }
     }
 
@@ -439,10 +725,7 @@ fn cylinder_parts(
         return None;
     }
     let safe2 = len2 * 4.0 * weight * weight / (ds * ds);
-    let root = Part {
-        cent: [0; 3],
-        size: [MAXSPART; 3],
-    };
+    let root = WHOLE;
     if radial2 <= 4.0 * rad2 || dist2_center >= safe2 {
         return Some(vec![root]);
     }
@@ -480,14 +763,10 @@ fn flat_parts(org: Vec3, center: Vec3, u: Vec3, v: Vec3, weight: f64, ds: f64) -
     let k = 2.0 * weight / ds;
     let k2 = k * k;
     let mut out = Vec::new();
-    let root = Part {
-        cent: [0; 3],
-        size: [MAXSPART; 3],
-    };
     split_flat(
         &mut out,
         org,
-        root,
+        WHOLE,
         MAXSPART,
         center,
         (u, v),

@@ -146,6 +146,7 @@ fn reflect_shape(m: &MirrorPlane, shape: &SourceShape) -> SourceShape {
             u,
             v,
             circular,
+            parallelogram,
             radius,
         } => {
             let mut n = m.vector(*normal);
@@ -157,6 +158,7 @@ fn reflect_shape(m: &MirrorPlane, shape: &SourceShape) -> SourceShape {
                 u: m.vector(*u),
                 v: m.vector(*v),
                 circular: *circular,
+                parallelogram: *parallelogram,
                 radius: *radius,
             }
         }
