@@ -327,6 +327,106 @@ impl DiskCell {
     }
 }
 
+/// The cone of directions in which a sphere is seen: its axis (toward the centre), two
+/// axes across it, and its half-angle.
+struct Cap {
+    axis: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    alpha: f64,
+}
+
+/// A piece of a [`Cap`]: angles from the axis and around it (from `e1` toward `e2`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct CapCell {
+    theta: (f64, f64),
+    phi: (f64, f64),
+}
+
+impl Cap {
+    fn whole(&self) -> CapCell {
+        CapCell {
+            theta: (0.0, self.alpha),
+            phi: (0.0, 2.0 * std::f64::consts::PI),
+        }
+    }
+
+    /// `V` of a piece, in closed form: with `w = cos t axis + sin t (cos p e1 + sin p
+    /// e2)` and `dw = sin t dt dp`, the axial part is `(sin^2 t1 - sin^2 t0) / 2 dp`
+    /// and the parts across are `S (sin p1 - sin p0)` along `e1`, `S (cos p0 - cos p1)`
+    /// along `e2`, with `S = [t / 2 - sin 2t / 4]` from `t0` to `t1`.
+    fn vector(&self, c: &CapCell) -> Vec3 {
+        let (t0, t1) = c.theta;
+        let (p0, p1) = c.phi;
+        let (s0, s1) = (t0.sin(), t1.sin());
+        let along = 0.5 * (s1 * s1 - s0 * s0) * (p1 - p0);
+        let across = 0.5 * (t1 - t0) - 0.25 * ((2.0 * t1).sin() - (2.0 * t0).sin());
+        self.axis * along
+            + self.e1 * (across * (p1.sin() - p0.sin()))
+            + self.e2 * (across * (p0.cos() - p1.cos()))
+    }
+}
+
+impl CapCell {
+    /// Solid angle.
+    fn omega(&self) -> f64 {
+        (self.theta.0.cos() - self.theta.1.cos()) * (self.phi.1 - self.phi.0)
+    }
+
+    /// The two halves of equal solid angle, across the longer side.
+    fn split(&self) -> [CapCell; 2] {
+        let (t0, t1) = self.theta;
+        let (p0, p1) = self.phi;
+        if t1 - t0 >= (0.5 * (t0 + t1)).sin() * (p1 - p0) {
+            let tm = (0.5 * (t0.cos() + t1.cos())).acos();
+            [
+                CapCell {
+                    theta: (t0, tm),
+                    phi: self.phi,
+                },
+                CapCell {
+                    theta: (tm, t1),
+                    phi: self.phi,
+                },
+            ]
+        } else {
+            let pm = 0.5 * (p0 + p1);
+            [
+                CapCell {
+                    theta: self.theta,
+                    phi: (p0, pm),
+                },
+                CapCell {
+                    theta: self.theta,
+                    phi: (pm, p1),
+                },
+            ]
+        }
+    }
+}
+
+/// A sphere's pieces for `-dx+`: the rule of [`disk_cells`] for the sphere's outline
+/// (a disk of its radius facing the point, at the distance `d` of its centre), each
+/// piece's half-width that of a square of its share of that disk's area.
+fn cap_cells(cap: &Cap, d: f64, radius: f64, weight: f64, ds: f64) -> Vec<CapCell> {
+    let k = 2.0 * weight / ds;
+    let whole = cap.whole();
+    let (area, omega) = (std::f64::consts::PI * radius * radius, whole.omega());
+    let mut out = Vec::new();
+    let mut stack = vec![(whole, MAXSPART)];
+    while let Some((cell, mp)) = stack.pop() {
+        let half2 = 0.25 * area * cell.omega() / omega;
+        if mp < 2 || d * d >= k * k * half2 {
+            out.push(cell);
+            continue;
+        }
+        let [a, b] = cell.split();
+        stack.push((b, mp / 2));
+        stack.push((a, mp / 2));
+    }
+    out
+}
+
 /// A disk source's partitions for `-dx+`: Radiance's rule for flat sources
 /// (`flt_partit`: halve while the point is nearer than `2 * weight / ds` half-widths,
 /// at most 64 pieces) applied to annular sectors of equal area, each piece's
@@ -487,10 +587,12 @@ impl Source {
     /// Lambertian surface receives exactly a fully visible partition's irradiance,
     /// where Radiance's centre samples are off by the order of `(size / distance)^2`.
     /// Parallelograms keep Radiance's partitions (`flat_parts`); disks are split into
-    /// annular sectors by the same rule ([`disk_cells`]); a distant source is one cap.
-    /// False for the shapes without an exact treatment (spheres, whose one sample is
-    /// already exact for a fully visible sphere above the horizon, cylinders, other
-    /// polygons), which keep Radiance's samples.
+    /// annular sectors by the same rule ([`disk_cells`]); a sphere's cone of directions
+    /// is split into pieces of its cap the same way ([`cap_cells`]; Radiance samples a
+    /// sphere at its centre only, which is exact when all of it is seen above the
+    /// horizon, but neither resolves shadows across it nor a sphere the horizon cuts);
+    /// a distant source is one cap. False for the shapes without an exact treatment
+    /// (cylinders, polygons other than parallelograms), which keep Radiance's samples.
     fn exact_samples(
         &self,
         org: Vec3,
@@ -564,6 +666,40 @@ impl Source {
                     } else {
                         out.extend(cell.sample(&frame, org, *normal));
                     }
+                }
+                true
+            }
+            SourceShape::Sphere { center, radius } => {
+                let to = *center - org;
+                let d = to.length();
+                if d <= *radius * (1.0 + 1e-9) {
+                    return false; // inside: Radiance's sample
+                }
+                let Some(e1) = perpendicular(to / d) else {
+                    return false;
+                };
+                let cap = Cap {
+                    axis: to / d,
+                    e1,
+                    e2: (to / d).cross(e1),
+                    alpha: (*radius / d).asin(),
+                };
+                let cells = if size_ratio > FTINY {
+                    cap_cells(&cap, d, *radius, weight, size_ratio)
+                } else {
+                    vec![cap.whole()]
+                };
+                for cell in cells {
+                    let mut dir = cap.vector(&cell);
+                    let omega = normalize(&mut dir);
+                    if omega <= 0.0 {
+                        continue;
+                    }
+                    // The near side of the sphere that way (V / |V| lies in the cone).
+                    let along = dir.dot(to);
+                    let off2 = (to.length_squared() - along * along).max(0.0);
+                    let dist = along - (radius * radius - off2).max(0.0).sqrt();
+                    out.push(SourceSample { dir, omega, dist });
                 }
                 true
             }
@@ -846,6 +982,82 @@ mod tests {
         // Projected solid angles approximate the exact value for a unit square at 1.
         let total: f64 = out.iter().map(|s| s.omega).sum();
         assert!(total > 0.7 && total < 1.0, "{total}");
+    }
+
+    fn sphere_source(center: Vec3, radius: f64) -> Source {
+        Source {
+            shape: SourceShape::sphere(center, radius),
+            ..square_source(1.0)
+        }
+    }
+
+    /// Sums of `dir * omega`, i.e. of the samples' `V`.
+    fn vector_sum(samples: &[SourceSample]) -> Vec3 {
+        samples.iter().map(|s| s.dir * s.omega).sum()
+    }
+
+    #[test]
+    fn exact_sphere_pieces_add_up_to_the_cap() {
+        let s = sphere_source(Vec3::new(0.3, -0.2, 2.0), 0.8);
+        let org = Vec3::new(0.1, 0.1, 0.0);
+        let mut out = Vec::new();
+        s.jittered_samples(org, 1.0, 0.05, None, true, &mut out);
+        assert!(out.len() > 8 && out.len() <= 64, "{}", out.len());
+        let to = Vec3::new(0.2, -0.3, 2.0);
+        let sin2 = 0.64 / to.length_squared();
+        let want = to.normalize() * (std::f64::consts::PI * sin2);
+        assert!(
+            (vector_sum(&out) - want).length() < 1e-12,
+            "{}",
+            vector_sum(&out)
+        );
+        for x in &out {
+            // Every shadow ray meets the sphere, at the distance given.
+            let p = org + x.dir * x.dist;
+            assert!((p.distance(Vec3::new(0.3, -0.2, 2.0)) - 0.8).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn exact_square_pieces_add_up_to_lamberts_formula() {
+        let s = square_source(1.0);
+        let org = Vec3::new(0.2, 0.1, -0.7);
+        let mut out = Vec::new();
+        s.jittered_samples(org, 1.0, 0.2, None, true, &mut out);
+        assert!(out.len() > 1);
+        let corners = [(-0.5, -0.5), (-0.5, 0.5), (0.5, 0.5), (0.5, -0.5)]
+            .map(|(x, y)| Vec3::new(x, y, 0.0) - org);
+        let whole = crate::solid_angle::polygon(&corners, Vec3::Z);
+        assert!((vector_sum(&out) - whole).length() < 1e-12 * whole.length());
+    }
+
+    #[test]
+    fn exact_disk_pieces_add_up_and_meet_the_disk() {
+        let (center, normal) = (
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(0.2, 0.1, -1.0).normalize(),
+        );
+        let s = Source {
+            shape: SourceShape::disk(center, normal, 0.6),
+            ..square_source(1.0)
+        };
+        let org = Vec3::new(0.3, -0.1, 0.0);
+        let mut out = Vec::new();
+        s.jittered_samples(org, 1.0, 0.05, None, true, &mut out);
+        assert!(out.len() > 8 && out.len() <= 64, "{}", out.len());
+        let e1 = perpendicular(normal).expect("a perpendicular");
+        let frame = DiskFrame {
+            center: center - org,
+            e1,
+            e2: normal.cross(e1),
+            radius: 0.6,
+        };
+        let whole = frame.whole();
+        assert!((vector_sum(&out) - whole).length() < 1e-8 * whole.length());
+        for x in &out {
+            let p = org + x.dir * x.dist;
+            assert!((p - center).dot(normal).abs() < 1e-9 && p.distance(center) <= 0.6 + 1e-9);
+        }
     }
 
     #[test]
