@@ -671,9 +671,21 @@ impl Source {
             }
             SourceShape::Sphere { center, radius } => {
                 let to = *center - org;
-                let d = to.length();
-                if d <= *radius * (1.0 + 1e-9) {
+                let d2 = to.length_squared();
+                if d2 <= radius * radius * (1.0 + 1e-9) {
                     return false; // inside: Radiance's sample
+                }
+                let d = d2.sqrt();
+                let k = 2.0 * weight / size_ratio;
+                let whole_half2 = 0.25 * std::f64::consts::PI * radius * radius;
+                if size_ratio <= FTINY || d2 >= k * k * whole_half2 {
+                    // One piece: V = pi sin^2(alpha) toward the centre, Radiance's sample.
+                    out.push(SourceSample {
+                        dir: to / d,
+                        omega: std::f64::consts::PI * radius * radius / d2,
+                        dist: d,
+                    });
+                    return true;
                 }
                 let Some(e1) = perpendicular(to / d) else {
                     return false;
@@ -684,22 +696,18 @@ impl Source {
                     e2: (to / d).cross(e1),
                     alpha: (*radius / d).asin(),
                 };
-                let cells = if size_ratio > FTINY {
-                    cap_cells(&cap, d, *radius, weight, size_ratio)
-                } else {
-                    vec![cap.whole()]
-                };
-                for cell in cells {
+                for cell in cap_cells(&cap, d, *radius, weight, size_ratio) {
                     let mut dir = cap.vector(&cell);
                     let omega = normalize(&mut dir);
-                    if omega <= 0.0 {
-                        continue;
+                    // V / |V| lies in the cone, so its shadow ray meets the sphere;
+                    // the distance is the centre's, as Radiance's (glow, spotlights).
+                    if omega > 0.0 {
+                        out.push(SourceSample {
+                            dir,
+                            omega,
+                            dist: d,
+                        });
                     }
-                    // The near side of the sphere that way (V / |V| lies in the cone).
-                    let along = dir.dot(to);
-                    let off2 = (to.length_squared() - along * along).max(0.0);
-                    let dist = along - (radius * radius - off2).max(0.0).sqrt();
-                    out.push(SourceSample { dir, omega, dist });
                 }
                 true
             }
@@ -1012,9 +1020,10 @@ mod tests {
             vector_sum(&out)
         );
         for x in &out {
-            // Every shadow ray meets the sphere, at the distance given.
-            let p = org + x.dir * x.dist;
-            assert!((p.distance(Vec3::new(0.3, -0.2, 2.0)) - 0.8).abs() < 1e-9);
+            // Every shadow ray meets the sphere.
+            let c = Vec3::new(0.3, -0.2, 2.0) - org;
+            let along = x.dir.dot(c);
+            assert!(c.length_squared() - along * along < 0.64);
         }
     }
 
