@@ -302,6 +302,29 @@ impl DiskCell {
         }
     }
 
+    /// A sample moved from the cell's middle (in `rho^2` and angle, so uniformly by
+    /// area) by `o`, fractions of its extent, standing for `cos / d^2` times its area
+    /// there (`area` the disk's).
+    fn jittered(
+        &self,
+        frame: &DiskFrame,
+        normal: Vec3,
+        area: f64,
+        o: [f64; 2],
+    ) -> Option<SourceSample> {
+        let (r0, r1) = self.rho;
+        let rho2 = 0.5 * (r0 * r0 + r1 * r1) + o[0] * (r1 * r1 - r0 * r0);
+        let phi = 0.5 * (self.phi.0 + self.phi.1) + o[1] * (self.phi.1 - self.phi.0);
+        let mut dir = frame.point(rho2.max(0.0).sqrt(), phi);
+        let dist = normalize(&mut dir);
+        let cos = -normal.dot(dir);
+        (dist > 0.0 && cos > 0.0).then(|| SourceSample {
+            dir,
+            omega: cos * area * self.area_fraction() / (dist * dist),
+            dist,
+        })
+    }
+
     /// The sample for this cell: toward its vector solid angle `V` when that direction
     /// meets the cell (a sector need not be convex), else toward its centroid with the
     /// part of `V` along that direction.
@@ -364,6 +387,19 @@ impl Cap {
         self.axis * along
             + self.e1 * (across * (p1.sin() - p0.sin()))
             + self.e2 * (across * (p0.cos() - p1.cos()))
+    }
+}
+
+impl Cap {
+    /// The direction moved from the piece's middle (in `cos t` and angle, so uniformly
+    /// by solid angle) by `o`, fractions of its extent.
+    fn direction(&self, c: &CapCell, o: [f64; 2]) -> Vec3 {
+        let (c0, c1) = (c.theta.0.cos(), c.theta.1.cos());
+        let cos_t = 0.5 * (c0 + c1) + o[0] * (c0 - c1);
+        let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+        let phi = 0.5 * (c.phi.0 + c.phi.1) + o[1] * (c.phi.1 - c.phi.0);
+        let (s, k) = phi.sin_cos();
+        self.axis * cos_t + (self.e1 * k + self.e2 * s) * sin_t
     }
 }
 
@@ -489,7 +525,7 @@ impl Source {
             return;
         }
         let start = out.len();
-        if !(exact && jitter.is_none() && self.exact_samples(org, weight, size_ratio, out)) {
+        if !(exact && self.exact_samples(org, weight, size_ratio, jitter, out)) {
             self.partition_samples(org, weight, size_ratio, jitter, out);
         }
         let mut kept = start;
@@ -593,14 +629,37 @@ impl Source {
     /// horizon, but neither resolves shadows across it nor a sphere the horizon cuts);
     /// a distant source is one cap. False for the shapes without an exact treatment
     /// (cylinders, polygons other than parallelograms), which keep Radiance's samples.
+    ///
+    /// With `jitter` (`-dj`) each piece's sample moves by up to that fraction of the
+    /// piece, uniformly by area on a disk (standing for `cos / d^2` times the piece's
+    /// area there) and by solid angle on a sphere's cap (standing for the piece's solid
+    /// angle): at `-dj 1` both are unbiased, shadows and horizon included, where
+    /// Radiance's jittered disk samples fill a square of equal area pulled in toward
+    /// the rim and its sphere samples a cube inside the sphere. Parallelograms and
+    /// distant sources keep Radiance's jittered samples (unbiased already).
     fn exact_samples(
         &self,
         org: Vec3,
         weight: f64,
         size_ratio: f64,
+        jitter: Option<(f64, u64)>,
         out: &mut Vec<SourceSample>,
     ) -> bool {
+        // The k-th piece's offsets, each within +-j/2 of the piece's extent.
+        let offsets = |k: usize| {
+            jitter.map(|(j, seed)| {
+                let seed = crate::random::derive(seed, k as u64);
+                [0u64, 1].map(|a| j * (crate::random::uniform(seed, a) - 0.5))
+            })
+        };
         match &self.shape {
+            SourceShape::Flat { .. } | SourceShape::Distant { .. } if jitter.is_some() => {
+                matches!(&self.shape, SourceShape::Flat { circular: true, .. })
+                    && self.exact_disk(org, weight, size_ratio, &offsets, out)
+            }
+            SourceShape::Flat { circular: true, .. } => {
+                self.exact_disk(org, weight, size_ratio, &offsets, out)
+            }
             SourceShape::Flat {
                 center,
                 normal,
@@ -636,39 +695,6 @@ impl Source {
                 }
                 true
             }
-            SourceShape::Flat {
-                center,
-                normal,
-                radius,
-                circular: true,
-                ..
-            } => {
-                if (org - *center).dot(*normal) <= 0.0 {
-                    return true;
-                }
-                let Some(e1) = perpendicular(*normal) else {
-                    return true;
-                };
-                let frame = DiskFrame {
-                    center: *center - org,
-                    e1,
-                    e2: normal.cross(e1),
-                    radius: *radius,
-                };
-                if size_ratio <= FTINY {
-                    out.extend(plane_sample(frame.whole(), org, *center, *normal));
-                    return true;
-                }
-                for cell in disk_cells(&frame, weight, size_ratio) {
-                    if cell.is_whole() {
-                        // The disk is convex: V / |V| points into it.
-                        out.extend(plane_sample(frame.whole(), org, *center, *normal));
-                    } else {
-                        out.extend(cell.sample(&frame, org, *normal));
-                    }
-                }
-                true
-            }
             SourceShape::Sphere { center, radius } => {
                 let to = *center - org;
                 let d2 = to.length_squared();
@@ -678,7 +704,8 @@ impl Source {
                 let d = d2.sqrt();
                 let k = 2.0 * weight / size_ratio;
                 let whole_half2 = 0.25 * std::f64::consts::PI * radius * radius;
-                if size_ratio <= FTINY || d2 >= k * k * whole_half2 {
+                let unsplit = size_ratio <= FTINY || d2 >= k * k * whole_half2;
+                if unsplit && jitter.is_none() {
                     // One piece: V = pi sin^2(alpha) toward the centre, Radiance's sample.
                     out.push(SourceSample {
                         dir: to / d,
@@ -696,7 +723,20 @@ impl Source {
                     e2: (to / d).cross(e1),
                     alpha: (*radius / d).asin(),
                 };
-                for cell in cap_cells(&cap, d, *radius, weight, size_ratio) {
+                let cells = if unsplit {
+                    vec![cap.whole()]
+                } else {
+                    cap_cells(&cap, d, *radius, weight, size_ratio)
+                };
+                for (k, cell) in cells.into_iter().enumerate() {
+                    if let Some(o) = offsets(k) {
+                        out.push(SourceSample {
+                            dir: cap.direction(&cell, o),
+                            omega: cell.omega(),
+                            dist: d,
+                        });
+                        continue;
+                    }
                     let mut dir = cap.vector(&cell);
                     let omega = normalize(&mut dir);
                     // V / |V| lies in the cone, so its shadow ray meets the sphere;
@@ -726,6 +766,55 @@ impl Source {
             }
             _ => false,
         }
+    }
+
+    /// [`Source::exact_samples`] for a disk source.
+    fn exact_disk(
+        &self,
+        org: Vec3,
+        weight: f64,
+        size_ratio: f64,
+        offsets: &dyn Fn(usize) -> Option<[f64; 2]>,
+        out: &mut Vec<SourceSample>,
+    ) -> bool {
+        let SourceShape::Flat {
+            center,
+            normal,
+            radius,
+            area,
+            ..
+        } = &self.shape
+        else {
+            return false;
+        };
+        if (org - *center).dot(*normal) <= 0.0 {
+            return true; // behind
+        }
+        let Some(e1) = perpendicular(*normal) else {
+            return true;
+        };
+        let frame = DiskFrame {
+            center: *center - org,
+            e1,
+            e2: normal.cross(e1),
+            radius: *radius,
+        };
+        let cells = if size_ratio > FTINY {
+            disk_cells(&frame, weight, size_ratio)
+        } else {
+            vec![DiskCell::WHOLE]
+        };
+        for (k, cell) in cells.into_iter().enumerate() {
+            if let Some(o) = offsets(k) {
+                out.extend(cell.jittered(&frame, *normal, *area, o));
+            } else if cell.is_whole() {
+                // The disk is convex: V / |V| points into it.
+                out.extend(plane_sample(frame.whole(), org, *center, *normal));
+            } else {
+                out.extend(cell.sample(&frame, org, *normal));
+            }
+        }
+        true
     }
 
     /// The sample of partition `p` (of `np`), moved from its centre by `offset` (each in

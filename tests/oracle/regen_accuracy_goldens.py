@@ -79,6 +79,12 @@ def cases():
         # Tilted 87 degrees: the horizon cuts the lamp's cone (half-angle 5.7 degrees).
         dict(id="sphere-horizon", scene=SPHERE, options=["-ab", "0", "-ds", ".05"],
              rays=[[0, 0, 0, math.sin(math.radians(87)), 0, math.cos(math.radians(87))]]),
+        dict(id="sphere-horizon-jitter", scene=SPHERE,
+             options=["-ab", "0", "-ds", ".05", "-dj", "1", "-u-"],
+             rays=[[0, 0, 0, math.sin(math.radians(87)), 0, math.cos(math.radians(87))]],
+             repeat=400),
+        dict(id="disk-jitter", scene=DISK, options=["-ab", "0", "-ds", ".05", "-dj", "1", "-u-"],
+             rays=[[0, 0, 0, 0, 0, 1]], repeat=400),
         dict(id="disk-axis", scene=DISK, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
         dict(id="rect-corner", scene=RECT, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
         # Jittered source samples (-dj 1): random points over each partition.
