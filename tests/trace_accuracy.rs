@@ -9,8 +9,10 @@
 //! rtrace's wherever rtrace's exceeds that rounding, and within the rounding where
 //! rtrace is exact too. Measured (rtrace's relative error, radc `-dx+`'s): sphere below
 //! and off axis 1e-7 and 6e-8, both exact (a fully visible sphere above the horizon is
-//! exact for one centre sample); disk on axis 2.2e-2 vs 2e-7; rectangle 7.4e-4 vs 2e-7;
-//! glowing dome and integrating sphere 5e-7 or less in both (exact: print rounding).
+//! exact for one centre sample); sphere the horizon cuts 6.4e-2 vs 7.4e-3; disk on axis
+//! 2.2e-2 vs 8e-8; rectangle 7.4e-4 vs 3e-7; triangle up to 2.9e-1 vs 3e-7; half-hidden
+//! rectangle and disk 7.6e-2 and 5.0e-2 vs 2.4e-2 and 3.0e-2; glowing dome and
+//! integrating sphere 1e-6 or less in both (exact: print rounding).
 //!
 //! The cases with ambient bounces are built so that every hemisphere sample sees the
 //! same radiance (a uniform dome, the inside of a sphere), so Monte Carlo adds no noise
@@ -153,13 +155,8 @@ fn more_accurate_than_rtrace_within(id: &str, exact: &[f64], slack: f64) {
                 ours[k]
             );
         }
-        // And both are right to begin with (to the partitions a shadow's edge crosses).
-        assert!(
-            es <= 1e-1 && eo <= 1e-1,
-            "{id}: radc {} / {}, exact {e}",
-            same[k],
-            ours[k]
-        );
+        // And -dx+ is right to begin with (to the partitions a shadow's edge crosses).
+        assert!(eo <= 5e-2, "{id}: radc -dx+ {}, exact {e}", ours[k]);
     }
 }
 
@@ -331,6 +328,46 @@ fn corner_rectangle_e(l: f64, a: f64, b: f64, c: f64) -> f64 {
 fn rectangular_source_form_factor() {
     more_accurate_than_rtrace("rect-corner", &[rectangle_e()]);
     dx_exact_to("rect-corner", &[rectangle_e()], ROUNDING);
+}
+
+/// A right triangle (0,0)-(0,2)-(3,0) of radiance L = 25 at height 1.5, seen from three
+/// points (under a corner, under its inside, tilted and outside). Lambert's formula for
+/// a polygon with corners R_i seen from the point (normal n):
+///     E = L/2 sum_i gamma_i n . (R_i x R_i+1) / |R_i x R_i+1|,
+/// gamma_i the angle between R_i and R_i+1 (the sign making E positive). rtrace
+/// samples a triangle as a square around its centroid (sized by the distance to the
+/// nearest edge, its partitions standing for equal shares of the triangle's area):
+/// 1.9%, 29% and 1.6% off here; radc -dx+ splits the triangle itself.
+fn triangle_e(o: [f64; 3], n: [f64; 3]) -> f64 {
+    let p = measured(o, n);
+    let corners = [[0.0, 0.0, 1.5], [0.0, 2.0, 1.5], [3.0, 0.0, 1.5]].map(|v| sub(v, p));
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let mut e = 0.0;
+    for i in 0..3 {
+        let (a, b) = (corners[i], corners[(i + 1) % 3]);
+        let c = cross(a, b);
+        let l = dot(c, c).sqrt();
+        e += l.atan2(dot(a, b)) * dot(n, c) / l;
+    }
+    25.0 * (e / 2.0).abs()
+}
+
+#[test]
+fn triangular_source() {
+    let tilt = [0.6, 0.0, 0.8];
+    let exact = [
+        triangle_e([0.0; 3], [0.0, 0.0, 1.0]),
+        triangle_e([1.0, 0.5, 0.0], [0.0, 0.0, 1.0]),
+        triangle_e([-1.0, -1.0, 0.0], tilt),
+    ];
+    more_accurate_than_rtrace("triangle", &exact);
+    dx_exact_to("triangle", &exact, ROUNDING);
 }
 
 /// The rectangle half hidden: an opaque plane at height z = .75 beyond x = .65 casts

@@ -77,8 +77,8 @@ pub struct Options {
     /// `-dj`: source jitter, 0 (sample points at partition centres) to 1 (anywhere in
     /// the partition).
     pub source_jitter: f64,
-    /// `-dx+` (radc's own): sample parallelogram, disk and distant sources with each
-    /// partition's exact solid angle, so that a fully visible source lights a
+    /// `-dx+` (radc's own): sample convex polygon, disk, sphere and distant sources
+    /// with each partition's exact solid angle, so that a fully visible source lights a
     /// Lambertian surface exactly (`lights::Source::exact_samples`). Off, samples are
     /// Radiance's partition centres and agree with rtrace.
     pub exact_sources: bool,

@@ -2,7 +2,9 @@
 //! source is, its size, and the deterministic samples (`-dj 0`) a point sends shadow
 //! rays to. Flat sources are split into up to 64 partitions, finer for nearer points and
 //! for smaller `-ds`, exactly as Radiance splits them, so sample directions and solid
-//! angles agree with rtrace.
+//! angles agree with rtrace. radc's `-dx+` ([`Source::exact_samples`]) instead gives
+//! each partition its exact solid angle (`crate::solid_angle`), more accurate than
+//! rtrace and so no longer equal to it.
 
 use crate::materials::light::Spot;
 use crate::math::{FHUGE, FTINY, Vec3, normalize, perpendicular};
@@ -28,6 +30,9 @@ pub enum SourceShape {
         /// A parallelogram (`u`, `v` span exactly the polygon), so that the partitions
         /// tile the source and `-dx+` can take each one's exact solid angle.
         parallelogram: bool,
+        /// The vertices of a convex polygon that is not a parallelogram (empty
+        /// otherwise): `-dx+` splits it into triangles.
+        convex_outline: Vec<Vec3>,
         /// Distance from the centre to the farthest point (`srad`).
         radius: f64,
     },
@@ -116,6 +121,11 @@ impl SourceShape {
             v,
             circular: false,
             parallelogram: is_parallelogram(vertices),
+            convex_outline: if !is_parallelogram(vertices) && is_convex(vertices, normal) {
+                vertices.to_vec()
+            } else {
+                Vec::new()
+            },
             radius: vertices
                 .iter()
                 .map(|p| p.distance(center))
@@ -142,6 +152,7 @@ impl SourceShape {
             v,
             circular: true,
             parallelogram: false,
+            convex_outline: Vec::new(),
             radius,
         }
     }
@@ -185,6 +196,30 @@ fn is_parallelogram(vertices: &[Vec3]) -> bool {
     };
     let size = (*c - *a).length().max((*d - *b).length());
     ((*a + *c) - (*b + *d)).length() <= 1e-9 * size
+}
+
+/// Whether a planar polygon is convex: every corner turns the same way about
+/// `normal` (none turning the other way, to rounding).
+fn is_convex(vertices: &[Vec3], normal: Vec3) -> bool {
+    let n = vertices.len();
+    if n < 3 {
+        return false;
+    }
+    let (mut pos, mut neg) = (false, false);
+    let size = vertices
+        .iter()
+        .map(|v| v.distance(vertices[0]))
+        .fold(0.0, f64::max);
+    for i in 0..n {
+        let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
+        let turn = (b - a).cross(c - b).dot(normal);
+        if turn > 1e-12 * size * size {
+            pos = true;
+        } else if turn < -1e-12 * size * size {
+            neg = true;
+        }
+    }
+    pos != neg
 }
 
 /// Half-extents of a square of `area` in the plane of `normal` (`setflatss`, without
@@ -509,9 +544,9 @@ impl Source {
 
     /// [`Source::samples`] with `-dj`: `jitter` is the fraction of each partition a
     /// sample may move by from its centre (Radiance's `dstrsrc`) and the seed of the
-    /// moves; `None` keeps the centres. With `exact` (`-dx+`) and no jitter,
-    /// parallelograms, disks and distant sources are sampled with each partition's
-    /// exact solid angle ([`Source::exact_samples`]).
+    /// moves; `None` keeps the centres. With `exact` (`-dx+`), convex polygons, disks,
+    /// spheres and distant sources are sampled with each partition's exact solid angle
+    /// ([`Source::exact_samples`]).
     pub fn jittered_samples(
         &self,
         org: Vec3,
@@ -627,16 +662,18 @@ impl Source {
     /// is split into pieces of its cap the same way ([`cap_cells`]; Radiance samples a
     /// sphere at its centre only, which is exact when all of it is seen above the
     /// horizon, but neither resolves shadows across it nor a sphere the horizon cuts);
-    /// a distant source is one cap. False for the shapes without an exact treatment
-    /// (cylinders, polygons other than parallelograms), which keep Radiance's samples.
+    /// other convex polygons are split into triangles ([`Source::exact_convex`]); a
+    /// distant source is one cap. False for the shapes without an exact treatment
+    /// (cylinders, concave polygons), which keep Radiance's samples.
     ///
     /// With `jitter` (`-dj`) each piece's sample moves by up to that fraction of the
     /// piece, uniformly by area on a disk (standing for `cos / d^2` times the piece's
     /// area there) and by solid angle on a sphere's cap (standing for the piece's solid
-    /// angle): at `-dj 1` both are unbiased, shadows and horizon included, where
-    /// Radiance's jittered disk samples fill a square of equal area pulled in toward
-    /// the rim and its sphere samples a cube inside the sphere. Parallelograms and
-    /// distant sources keep Radiance's jittered samples (unbiased already).
+    /// angle), and triangles' likewise by area ([`Source::exact_convex`]): at `-dj 1`
+    /// all are unbiased, shadows and horizon included, where Radiance's jittered disk
+    /// samples fill a square of equal area pulled in toward the rim and its sphere
+    /// samples a cube inside the sphere. Parallelograms and distant sources keep
+    /// Radiance's jittered samples (unbiased already).
     fn exact_samples(
         &self,
         org: Vec3,
@@ -653,13 +690,13 @@ impl Source {
             })
         };
         match &self.shape {
-            SourceShape::Flat { .. } | SourceShape::Distant { .. } if jitter.is_some() => {
-                matches!(&self.shape, SourceShape::Flat { circular: true, .. })
-                    && self.exact_disk(org, weight, size_ratio, &offsets, out)
-            }
             SourceShape::Flat { circular: true, .. } => {
                 self.exact_disk(org, weight, size_ratio, &offsets, out)
             }
+            SourceShape::Flat { convex_outline, .. } if !convex_outline.is_empty() => {
+                self.exact_convex(org, weight, size_ratio, jitter, out)
+            }
+            SourceShape::Flat { .. } | SourceShape::Distant { .. } if jitter.is_some() => false,
             SourceShape::Flat {
                 center,
                 normal,
@@ -766,6 +803,109 @@ impl Source {
             }
             _ => false,
         }
+    }
+
+    /// [`Source::exact_samples`] for a convex polygon other than a parallelogram: the
+    /// whole polygon while the point is far enough (Radiance's rule, the half-width
+    /// that of a square of equal area), else its fan of triangles from the first
+    /// vertex, each halved across its longest edge by the same rule (at most about 64
+    /// pieces). Jittered, every piece is a triangle and its sample moves uniformly by
+    /// area (toward the centroid for `-dj` below 1), standing for `cos / d^2` times
+    /// its area.
+    fn exact_convex(
+        &self,
+        org: Vec3,
+        weight: f64,
+        size_ratio: f64,
+        jitter: Option<(f64, u64)>,
+        out: &mut Vec<SourceSample>,
+    ) -> bool {
+        let SourceShape::Flat {
+            center,
+            normal,
+            area,
+            convex_outline: outline,
+            ..
+        } = &self.shape
+        else {
+            return false;
+        };
+        if (org - *center).dot(*normal) <= 0.0 || outline.len() < 3 {
+            return true; // behind
+        }
+        let k = if size_ratio > FTINY {
+            2.0 * weight / size_ratio
+        } else {
+            0.0
+        };
+        let split = |c: Vec3, a: f64| org.distance_squared(c) < k * k * 0.25 * a;
+        if jitter.is_none() && !split(*center, *area) {
+            let rel: Vec<Vec3> = outline.iter().map(|p| *p - org).collect();
+            out.extend(plane_sample(
+                crate::solid_angle::polygon(&rel, -*normal),
+                org,
+                *center,
+                *normal,
+            ));
+            return true;
+        }
+        let fans = outline.len() - 2;
+        let mp0 = (MAXSPART / fans as i32).max(1);
+        let mut stack: Vec<([Vec3; 3], i32)> = (1..=fans)
+            .rev()
+            .map(|i| ([outline[0], outline[i], outline[i + 1]], mp0))
+            .collect();
+        let mut piece = 0u64;
+        while let Some((t, mp)) = stack.pop() {
+            let c = (t[0] + t[1] + t[2]) / 3.0;
+            let a = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+            if mp >= 2 && split(c, a) {
+                // Halve across the longest edge (i, j), l the opposite corner.
+                let len = |i: usize, j: usize| t[i].distance_squared(t[j]);
+                let (i, j, l) =
+                    [(0, 1, 2), (1, 2, 0), (2, 0, 1)]
+                        .into_iter()
+                        .fold((0, 1, 2), |best, e| {
+                            if len(e.0, e.1) > len(best.0, best.1) {
+                                e
+                            } else {
+                                best
+                            }
+                        });
+                let m = 0.5 * (t[i] + t[j]);
+                stack.push(([t[l], m, t[j]], mp / 2));
+                stack.push(([t[l], t[i], m], mp / 2));
+                continue;
+            }
+            if let Some((j, seed)) = jitter {
+                let seed = crate::random::derive(seed, piece);
+                let (u1, u2) = (
+                    crate::random::uniform(seed, 0).sqrt(),
+                    crate::random::uniform(seed, 1),
+                );
+                let p = t[0] * (1.0 - u1) + t[1] * (u1 * (1.0 - u2)) + t[2] * (u1 * u2);
+                let mut dir = c + (p - c) * j - org;
+                let dist = normalize(&mut dir);
+                let cos = -normal.dot(dir);
+                if dist > 0.0 && cos > 0.0 {
+                    out.push(SourceSample {
+                        dir,
+                        omega: cos * a / (dist * dist),
+                        dist,
+                    });
+                }
+            } else {
+                let rel = t.map(|p| p - org);
+                out.extend(plane_sample(
+                    crate::solid_angle::polygon(&rel, -*normal),
+                    org,
+                    *center,
+                    *normal,
+                ));
+            }
+            piece += 1;
+        }
+        true
     }
 
     /// [`Source::exact_samples`] for a disk source.
@@ -1155,6 +1295,39 @@ mod tests {
         for x in &out {
             let p = org + x.dir * x.dist;
             assert!((p - center).dot(normal).abs() < 1e-9 && p.distance(center) <= 0.6 + 1e-9);
+        }
+    }
+
+    #[test]
+    fn exact_triangle_pieces_add_up_to_lamberts_formula() {
+        let verts = [
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(0.2, 0.9, 1.0),
+        ];
+        let area = 0.5 * (verts[1] - verts[0]).cross(verts[2] - verts[0]).length();
+        let s = Source {
+            shape: SourceShape::polygon(&verts, -Vec3::Z, area),
+            ..square_source(1.0)
+        };
+        let org = Vec3::new(0.3, 0.2, 0.2);
+        let mut out = Vec::new();
+        s.jittered_samples(org, 1.0, 0.05, None, true, &mut out);
+        assert!(out.len() > 8 && out.len() <= 64, "{}", out.len());
+        let whole = crate::solid_angle::polygon(&verts.map(|v| v - org), Vec3::Z);
+        assert!((vector_sum(&out) - whole).length() < 1e-12 * whole.length());
+        // A concave polygon keeps Radiance's samples.
+        let l_shape = [
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(2.0, 0.0, 1.0),
+            Vec3::new(2.0, 1.0, 1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+            Vec3::new(1.0, 2.0, 1.0),
+            Vec3::new(0.0, 2.0, 1.0),
+        ];
+        match SourceShape::polygon(&l_shape, -Vec3::Z, 3.0) {
+            SourceShape::Flat { convex_outline, .. } => assert!(convex_outline.is_empty()),
+            other => panic!("{other:?}"),
         }
     }
 

@@ -147,6 +147,7 @@ fn reflect_shape(m: &MirrorPlane, shape: &SourceShape) -> SourceShape {
             v,
             circular,
             parallelogram,
+            convex_outline,
             radius,
         } => {
             let mut n = m.vector(*normal);
@@ -159,6 +160,7 @@ fn reflect_shape(m: &MirrorPlane, shape: &SourceShape) -> SourceShape {
                 v: m.vector(*v),
                 circular: *circular,
                 parallelogram: *parallelogram,
+                convex_outline: convex_outline.iter().map(|p| m.point(*p)).collect(),
                 radius: *radius,
             }
         }

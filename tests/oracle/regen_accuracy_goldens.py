@@ -39,6 +39,10 @@ RECT = (
 BLACK = "void plastic black 0 0 5 0 0 0 0 0\n"
 RECT_OCCLUDED = RECT + BLACK + "black polygon blind 0 0 12 .65 -3 .75 5 -3 .75 5 5 .75 .65 5 .75\n"
 DISK_OCCLUDED = DISK + BLACK + "black polygon blind 0 0 12 .25 -3 1 5 -3 1 5 5 1 .25 5 1\n"
+TRIANGLE = (
+    "void light panel 0 0 3 25 25 25\n"
+    "panel polygon tri 0 0 9 0 0 1.5 0 2 1.5 3 0 1.5\n"
+)
 GLOW_DOME = (
     "void glow sky 0 0 4 2 2 2 0\n"
     "sky bubble dome 0 0 4 0 0 0 10\n"
@@ -87,6 +91,8 @@ def cases():
              rays=[[0, 0, 0, 0, 0, 1]], repeat=400),
         dict(id="disk-axis", scene=DISK, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
         dict(id="rect-corner", scene=RECT, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
+        dict(id="triangle", scene=TRIANGLE, options=["-ab", "0", "-ds", ".05"],
+             rays=[[0, 0, 0, 0, 0, 1], [1, 0.5, 0, 0, 0, 1], [-1, -1, 0, 0.6, 0, 0.8]]),
         # Jittered source samples (-dj 1): random points over each partition.
         dict(id="rect-jitter", scene=RECT, options=["-ab", "0", "-ds", ".05", "-dj", "1"],
              rays=[[0, 0, 0, 0, 0, 1]], repeat=400),
