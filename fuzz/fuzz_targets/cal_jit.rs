@@ -2,7 +2,9 @@
 //! and by the reference interpreter: the JIT must never panic, and where both finish
 //! they must give the same outputs bit for bit, or the same error. (Programs the JIT
 //! declines run on the interpreter in `radc calc`, so a refusal is fine.) Recursion is
-//! left out of the comparison: the two count depth against different budgets.
+//! left out of the comparison: the two count depth against different budgets. Both run
+//! on a thread with the stack `radc calc` gives them (512 MiB): their depth limits are
+//! set for that stack, not for the fuzzer's main thread.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -13,6 +15,16 @@ use radc_lang::cal::{Env, Module};
 use radc_lang::source::decode;
 
 fuzz_target!(|data: &[u8]| {
+    let data = data.to_vec();
+    std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(move || compare(&data))
+        .expect("thread")
+        .join()
+        .expect("no panic");
+});
+
+fn compare(data: &[u8]) {
     let (text, _) = decode(FileId(0), data);
     let mut module = Module::new(&Env::rcalc());
     let diags = module.add_source(FileId(0), &text);
@@ -40,4 +52,4 @@ fuzz_target!(|data: &[u8]| {
         return;
     }
     assert_eq!(got, expected, "JIT vs interpreter on {text:?}");
-});
+}
