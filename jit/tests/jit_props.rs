@@ -221,6 +221,8 @@ fn config() -> ProptestConfig {
         .unwrap_or(256);
     ProptestConfig {
         cases,
+        // Programs the parser rejects are skipped: about one in five.
+        max_global_rejects: cases.max(1024),
         ..ProptestConfig::default()
     }
 }

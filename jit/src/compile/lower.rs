@@ -29,25 +29,43 @@ enum CalleeName {
     Dynamic(Value),
 }
 
-/// What the lowering knows has been computed on every path to the current point,
-/// with the value that holds it (see `Lower::known`).
+/// A value number: values with the same number are equal whenever both have been
+/// computed (in one call of the generated function), whichever paths computed them.
+type Vn = u32;
+
+/// What a value is, as far as the lowering can tell: the keys of what is known to be
+/// computed on every path to the current point (`Lower::known_args`) and of the value
+/// numbers (`Lower::vns`).
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 enum Key {
     /// Parameter `n` of frame `frame`: a slot's value never changes once computed.
     Arg(u32, u32),
-    /// A variable: its cached value does not change within a record.
+    /// A variable: its cached value does not change within a record (except while
+    /// the variable itself is being computed: reads of it in its own body see the
+    /// previous value, and are not given this key's value number).
     Var(u32),
-    /// The C library's result for an argument value (`pow` for two): the
-    /// functions are pure, so a second call with the same value reuses it (the
+    /// Input column `n`: the same within a record (`Input` is read, not consumed).
+    Chan(u32),
+    /// The `errno` code reading column `n` raised (an i64, 0 for none).
+    ChanErrno(u32),
+    /// The C library's result for an argument value (`pow` and `atan2` for two):
+    /// the functions are pure, so a second call with the same value reuses it (the
     /// `errno` and depth bookkeeping around the call is still done each time).
-    Call(Builtin, Value),
-    Pow(Value, Value),
+    Call(Builtin, Vn),
+    Pow(Vn, Vn),
+    Atan2(Vn, Vn),
     /// An exact arithmetic operation (kind, operands): the same operation on the
     /// same values is the same value, so later calls on it can be recognised.
-    Op(u8, Value, Value),
+    Op(u8, Vn, Vn),
     /// A number, by bits.
     Num(u64),
+    /// A value with no identity beyond itself.
+    Val(Value),
 }
+
+/// How many library results one generated function remembers across branches (each
+/// is two SSA variables: computed, and the value).
+const MAX_LAZY: usize = 48;
 
 const OP_ADD: u8 = 0;
 const OP_MUL: u8 = 1;
@@ -121,6 +139,15 @@ pub struct Lower<'a, 'b, 'm> {
     /// Variables whose bodies are being inlined (a body refers to itself, or to a
     /// variable around it, through the cache as usual).
     inlining_vars: Vec<DefId>,
+    /// The variable whose body this function is (`Job::Var`).
+    job_var: Option<DefId>,
+    /// Value numbers of values, and of keys (see [`Vn`]).
+    vns: HashMap<Value, Vn>,
+    interned: HashMap<Key, Vn>,
+    next_vn: Vn,
+    /// Library results computed on some paths: whether (an i8) and what, as SSA
+    /// variables, so a later call on an equal argument tests instead of calling.
+    lazy: HashMap<Key, (Variable, Variable)>,
 }
 
 fn mem() -> MemFlagsData {
@@ -162,6 +189,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             restore: None,
             restores: Vec::new(),
             inlining_vars: Vec::new(),
+            job_var: match &job {
+                Job::Var(d) => Some(*d),
+                _ => None,
+            },
+            vns: HashMap::new(),
+            interned: HashMap::new(),
+            next_vn: 0,
+            lazy: HashMap::new(),
         };
         let v = match job {
             Job::Var(d) => lw.var_body(d)?,
@@ -172,6 +207,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Job::Entry { what, .. } => match what {
                 EntryBody::Variable(s) => lw.variable(s)?,
                 EntryBody::Output(e) => lw.expr(e)?,
+                EntryBody::Outputs(list) => lw.outputs(list)?,
             },
         };
         lw.b.ins().return_(&[v]);
@@ -361,6 +397,23 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
 
     // ---- function bodies ------------------------------------------------------------
 
+    /// Every output in order, as separate entries would compute them one after the
+    /// other in the same record (each starts at depth 0 with no fatal error, as
+    /// `Compiled::run` starts them), storing each value and the count as it goes:
+    /// on a fatal error the host has the columns before it. What one column
+    /// computed (variables, input columns, library results) the next reuses.
+    fn outputs(&mut self, list: &'m [&'m Expr]) -> R<Value> {
+        let out = self.load_raw(self.st.ptr, OFF_OUT);
+        for (k, e) in list.iter().enumerate() {
+            let v = self.expr(e)?;
+            self.check_failed();
+            self.b.ins().store(mem(), v, out, k as i32 * 8);
+            let n = self.i64c(k as u64 + 1);
+            self.store_raw(n, OFF_DONE);
+        }
+        Ok(self.f64c(0.0))
+    }
+
     fn func_body(&mut self, def: DefId) -> R<Value> {
         self.st.compiled_defs.insert(def);
         let sym = self.st.module.def(def).sym.0;
@@ -454,10 +507,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 if *n < 1 {
                     self.fail(E_ILLEGAL_CHANNEL, NO_SYM)
                 } else {
-                    let n = self.i32c(*n);
-                    let v = self.call_import_f64("radc_chan", &[self.raw, n]);
-                    self.check_failed();
-                    v
+                    self.channel(*n)
                 }
             }
             Node::Var(s) => self.variable(*s)?,
@@ -465,14 +515,16 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Node::Arg(n) => self.inline_argument(*n)?,
             Node::Neg(a) => {
                 let x = self.expr(a)?;
-                self.memo(Key::Op(OP_NEG, x, x), |lw| lw.b.ins().fneg(x))
+                let k = self.op_key(OP_NEG, x, x);
+                self.memo(k, |lw| lw.b.ins().fneg(x))
             }
             // Summed from 0 as calexpr.c `eadd` does: `-0 + -0` is 0.
             Node::Sum(v) => {
                 let mut acc = self.number(0.0);
                 for x in v {
                     let x = self.expr(x)?;
-                    acc = self.memo(Key::Op(OP_ADD, acc, x), |lw| {
+                    let k = self.op_key(OP_ADD, acc, x);
+                    acc = self.memo(k, |lw| {
                         let r = lw.b.ins().fadd(acc, x);
                         lw.nan_first(acc, x, r)
                     });
@@ -486,10 +538,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 for x in v {
                     let x = self.expr(x)?;
                     acc = Some(match acc {
-                        Some(a) => self.memo(Key::Op(OP_MUL, a, x), |lw| {
-                            let r = lw.b.ins().fmul(a, x);
-                            lw.nan_first(a, x, r)
-                        }),
+                        Some(a) => {
+                            let k = self.op_key(OP_MUL, a, x);
+                            self.memo(k, |lw| {
+                                let r = lw.b.ins().fmul(a, x);
+                                lw.nan_first(a, x, r)
+                            })
+                        }
                         None => x,
                     });
                 }
@@ -501,7 +556,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Node::Sub(a, b) => {
                 let x = self.expr(a)?;
                 let y = self.expr(b)?;
-                self.memo(Key::Op(OP_SUB, x, y), |lw| {
+                let k = self.op_key(OP_SUB, x, y);
+                self.memo(k, |lw| {
                     let r = lw.b.ins().fsub(x, y);
                     lw.nan_first(x, y, r)
                 })
@@ -513,6 +569,29 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 Callee::Arg(n) => self.call_arg(*n, args)?,
             },
         })
+    }
+
+    /// Input column `n` (`n >= 1`): read once on every path (a fatal error aborts),
+    /// then reused, with the `errno` the read raised raised again, as a new read
+    /// would (`Input::column` gives the same for the same record).
+    fn channel(&mut self, n: u32) -> Value {
+        if let (Some(&v), Some(&e)) = (
+            self.known_args.get(&Key::Chan(n)),
+            self.known_args.get(&Key::ChanErrno(n)),
+        ) {
+            let errno = self.load_raw(types::I64, OFF_ERRNO);
+            let new = self.b.ins().select(e, e, errno);
+            self.store_raw(new, OFF_ERRNO);
+            return v;
+        }
+        let c = self.i32c(n);
+        let v = self.call_import_f64("radc_chan", &[self.raw, c]);
+        self.check_failed();
+        let e = self.load_raw(types::I64, OFF_CHAN_ERRNO);
+        self.know(Key::Chan(n), v);
+        self.know(Key::ChanErrno(n), e);
+        self.label(v, Key::Chan(n));
+        v
     }
 
     /// A number in an expression (one value per number in each region of code, so
@@ -561,6 +640,91 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let v = make(self);
         self.know(key, v);
+        self.label(v, key);
+        v
+    }
+
+    fn intern(&mut self, key: Key) -> Vn {
+        if let Some(&n) = self.interned.get(&key) {
+            return n;
+        }
+        let n = self.next_vn;
+        self.next_vn += 1;
+        self.interned.insert(key, n);
+        n
+    }
+
+    /// The value number of `v`: its key's if it was given one, else its own.
+    fn vn(&mut self, v: Value) -> Vn {
+        if let Some(&n) = self.vns.get(&v) {
+            return n;
+        }
+        let n = self.intern(Key::Val(v));
+        self.vns.insert(v, n);
+        n
+    }
+
+    /// `v` is the value of `key` (a value keeps the first number it was given; a
+    /// key not yet numbered takes the value's).
+    fn label(&mut self, v: Value, key: Key) {
+        match self.vns.get(&v) {
+            Some(&n) => {
+                self.interned.entry(key).or_insert(n);
+            }
+            None => {
+                let n = self.intern(key);
+                self.vns.insert(v, n);
+            }
+        }
+    }
+
+    fn op_key(&mut self, kind: u8, x: Value, y: Value) -> Key {
+        Key::Op(kind, self.vn(x), self.vn(y))
+    }
+
+    /// A pure library function's result for `key`: the value already computed on
+    /// every path here; else, if some path may have computed it, a test of that
+    /// (the value, or a call); else a call, remembered for later calls.
+    fn pure_call(&mut self, key: Key, call: impl FnOnce(&mut Self) -> Value) -> Value {
+        if let Some(&v) = self.known_args.get(&key) {
+            return v;
+        }
+        let v = match self.lazy.get(&key).copied() {
+            Some((flag, val)) => {
+                let done = self.b.use_var(flag);
+                let (j, out) = self.join();
+                let have = self.b.create_block();
+                let compute = self.b.create_block();
+                self.b.ins().brif(done, have, &[], compute, &[]);
+                self.b.switch_to_block(have);
+                let v = self.b.use_var(val);
+                self.jump_with(j, v);
+                self.b.switch_to_block(compute);
+                let d = call(self);
+                let one = self.b.ins().iconst(types::I8, 1);
+                self.b.def_var(flag, one);
+                self.b.def_var(val, d);
+                self.jump_with(j, d);
+                self.b.switch_to_block(j);
+                out
+            }
+            None => {
+                let d = call(self);
+                if self.lazy.len() < MAX_LAZY {
+                    // Never defined on the paths that do not compute it, the flag
+                    // reads as 0 there (Cranelift's SSA construction zero-fills).
+                    let flag = self.b.declare_var(types::I8);
+                    let val = self.b.declare_var(types::F64);
+                    let one = self.b.ins().iconst(types::I8, 1);
+                    self.b.def_var(flag, one);
+                    self.b.def_var(val, d);
+                    self.lazy.insert(key, (flag, val));
+                }
+                d
+            }
+        };
+        self.know(key, v);
+        self.label(v, key);
         v
     }
 
@@ -591,7 +755,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .is_some_and(|v| v != 0.0 && !v.is_nan())
         {
             let num = self.expr(a)?;
-            return Ok(self.memo(Key::Op(OP_DIV, num, den), |lw| lw.b.ins().fdiv(num, den)));
+            let k = self.op_key(OP_DIV, num, den);
+            return Ok(self.memo(k, |lw| lw.b.ins().fdiv(num, den)));
         }
         let zero = self.f64c(0.0);
         let is_zero = self.b.ins().fcmp(FloatCC::UnorderedOrEqual, den, zero);
@@ -630,14 +795,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let y = self.expr(b)?;
         let x = self.expr(a)?;
-        let d = match self.known_args.get(&Key::Pow(x, y)) {
-            Some(&d) => d,
-            None => {
-                let d = self.call_import_f64("radc_pow", &[x, y]);
-                self.know(Key::Pow(x, y), d);
-                d
-            }
-        };
+        let key = Key::Pow(self.vn(x), self.vn(y));
+        let d = self.pure_call(key, |lw| lw.call_import_f64("radc_pow", &[x, y]));
         // As for library functions: pure operands leave `errno` clear.
         if pure && self.st.policy != MathErrors::NonFinite {
             return Ok(d);
@@ -697,12 +856,17 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         if let Some(&v) = self.known_args.get(&Key::Var(def.0)) {
             return Ok(v);
         }
-        if !self.inlining_vars.contains(&def)
+        // Reads of a variable in its own body see the previous value: known there,
+        // but not numbered as the variable's value.
+        let own = self.inlining_vars.contains(&def) || self.job_var == Some(def);
+        if !own
             && self.inlining_vars.len() < INLINE_VAR_NESTING
-            && self.st.var_inlinable(def)
+            && let Some(size) = self.st.var_inline_size(def)
+            && self.st.charge_inline(size)
         {
             let v = self.inline_variable(def)?;
             self.know(Key::Var(def.0), v);
+            self.label(v, Key::Var(def.0));
             return Ok(v);
         }
         let (fid, idx) = self.st.var_fn(def)?;
@@ -719,6 +883,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let v = self.cached_variable(def, f, idx);
         self.know(Key::Var(def.0), v);
+        if !own {
+            self.label(v, Key::Var(def.0));
+        }
         Ok(v)
     }
 
@@ -884,6 +1051,10 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             self.rewind(known);
             self.jump_with(j, v);
             self.b.switch_to_block(j);
+            // Either way the argument's one value: computed now or before, it is
+            // the same expression in the same frame.
+            let n = self.vn(v);
+            self.vns.insert(out, n);
             out
         };
         let one = self.b.ins().iconst(types::I8, 1);
@@ -935,7 +1106,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         Ok(v)
     }
 
-    /// Inlined code never builds argument blocks (see `State::inlinable`); this
+    /// Inlined code never builds argument blocks (see `State::inline_size`); this
     /// guards the rule.
     fn in_own_frame(&self) -> R<()> {
         if self.cur == 0 {
@@ -957,7 +1128,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .current_def(s)
             .filter(|&d| module.def(d).is_function())
         {
-            if self.st.inlinable(def) {
+            // Inside inlined code every call is inlined (see `State::inline_size`);
+            // the outermost inlined call was charged for them.
+            let inline = match self.st.inline_size(def) {
+                Some(_) if self.cur != 0 => true,
+                Some(size) => self.st.charge_inline(size),
+                None => false,
+            };
+            if inline {
                 let sym = module.def(def).sym.0;
                 return self.inline_call(def, sym, args);
             }
@@ -1372,7 +1550,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Builtin::Atan2 => {
                 let x = self.lib_arg(args, 1, sym)?;
                 let y = self.lib_arg(args, 0, sym)?;
-                self.call_import_f64("radc_atan2", &[y, x])
+                self.atan2(y, x)
             }
             // Exact operations (floor, ceil, sqrt) are the hardware instruction, the
             // others calls of the very functions the interpreter calls.
@@ -1421,7 +1599,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let d = if b == Builtin::Atan2 {
             let x = self.expr(&used[1])?;
             let y = self.expr(&used[0])?;
-            self.call_import_f64("radc_atan2", &[y, x])
+            self.atan2(y, x)
         } else {
             let x = self.expr(&used[0])?;
             self.unary(b, x)
@@ -1431,6 +1609,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         } else {
             d
         }))
+    }
+
+    fn atan2(&mut self, y: Value, x: Value) -> Value {
+        let key = Key::Atan2(self.vn(y), self.vn(x));
+        self.pure_call(key, |lw| lw.call_import_f64("radc_atan2", &[y, x]))
     }
 
     /// A one-argument C library function, inline where it is one instruction.
@@ -1448,16 +1631,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             }
             Builtin::Sqrt => self.b.ins().sqrt(x),
             other => {
-                let key = Key::Call(other, x);
-                if let Some(&d) = self.known_args.get(&key) {
-                    return d;
-                }
-                let d = match unary_symbol(other) {
-                    Some(name) => self.call_import_f64(name, &[x]),
-                    None => self.f64c(0.0),
-                };
-                self.know(key, d);
-                d
+                let key = Key::Call(other, self.vn(x));
+                self.pure_call(key, |lw| match unary_symbol(other) {
+                    Some(name) => lw.call_import_f64(name, &[x]),
+                    None => lw.f64c(0.0),
+                })
             }
         }
     }

@@ -1,7 +1,8 @@
 //! rcalc's record loop over compiled code: the same driver as
 //! [`crate::interp::Interpreter`] (a new clock per record, `cond`, `recno`/`outno`,
 //! outputs in ascending column order, the columns computed before a fatal error),
-//! with each output column and `cond` compiled as an entry point.
+//! with `cond` and each `-o` field compiled as an entry point, and the output columns
+//! as one (`$*`, [`super::Compiled::eval_outputs`]).
 
 use super::{Compiled, Context, Entry, Jit, JitError};
 use crate::interp::{Error, Outputs, Record};
@@ -32,7 +33,10 @@ pub struct JitProgram {
     compiled: Compiled,
     ctx: Context,
     cond: Option<Entry>,
-    outputs: Vec<(u32, Entry)>,
+    /// The output columns, ascending, and the entry computing them all.
+    columns: Vec<u32>,
+    outputs: Entry,
+    values: Vec<f64>,
     /// The expressions given to [`JitProgram::with_fields`], as entries.
     fields: Vec<Entry>,
     recno: Option<usize>,
@@ -66,7 +70,7 @@ impl JitProgram {
             return Err(StartError::Program(Error::ConstantCond));
         }
         let columns: Vec<u32> = module.outputs().keys().copied().collect();
-        let mut entries: Vec<String> = columns.iter().map(|c| format!("${c}")).collect();
+        let mut entries: Vec<String> = vec!["$*".into()];
         if cond.is_some() {
             entries.push("cond".into());
         }
@@ -88,10 +92,7 @@ impl JitProgram {
                 .entry(name)
                 .ok_or_else(|| StartError::Jit(JitError::UnknownEntry(name.to_string())))
         };
-        let outputs = columns
-            .iter()
-            .map(|c| Ok((*c, entry(&format!("${c}"))?)))
-            .collect::<Result<Vec<_>, StartError>>()?;
+        let outputs = entry("$*")?;
         let cond = match cond {
             Some(_) => Some(entry("cond")?),
             None => None,
@@ -106,7 +107,9 @@ impl JitProgram {
             compiled,
             ctx,
             cond,
+            columns,
             outputs,
+            values: Vec::new(),
             fields,
             nrecs: 0,
             nout: 0,
@@ -198,14 +201,18 @@ impl JitProgram {
     /// The `$N` columns of the record begun, appended to `out`; on an error `out`
     /// holds the columns computed before it.
     pub fn outputs_into(&mut self, input: &mut dyn Input, out: &mut Outputs) -> Result<(), Error> {
-        for &(chan, entry) in &self.outputs {
-            out.push((chan, self.compiled.eval(entry, &mut self.ctx, input)?));
-        }
-        Ok(())
+        let mut values = std::mem::take(&mut self.values);
+        values.clear();
+        let result = self
+            .compiled
+            .eval_outputs(self.outputs, &mut self.ctx, input, &mut values);
+        out.extend(self.columns.iter().copied().zip(values.iter().copied()));
+        self.values = values;
+        Ok(result?)
     }
 
     fn outputs(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
-        let mut out = Vec::with_capacity(self.outputs.len());
+        let mut out = Vec::with_capacity(self.columns.len());
         match self.outputs_into(input, &mut out) {
             Ok(()) => Ok(out),
             Err(e) => {
