@@ -205,3 +205,72 @@ fn every_library_file_compiles_small() {
     );
     assert!(worst.0 < 60_000, "{} instructions for {}", worst.0, worst.1);
 }
+
+/// Not a test: compile time and code size of xyz_rgb.cal against the budget
+/// (`cargo test --release --test jit_compile_size -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn budget_survey() {
+    let Some(lib) = library_dir() else { return };
+    let Ok(text) = std::fs::read_to_string(lib.join("xyz_rgb.cal")) else {
+        return;
+    };
+    let m = module(
+        &[
+            &text,
+            "$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)",
+        ],
+        &Env::rcalc(),
+    );
+    for budget in [0, 250, 500, 1000, 2000, 3000, 6000] {
+        let t = std::time::Instant::now();
+        let c = Jit::new()
+            .with_inline_budget(budget)
+            .compile(&m, &["$*"])
+            .expect("compiles");
+        eprintln!(
+            "budget {budget}: {} instructions, {:?}",
+            c.instruction_count(),
+            t.elapsed()
+        );
+    }
+}
+
+/// Not a test: a loop to profile (`valgrind --tool=callgrind` on the test binary
+/// with `--ignored profile_loop`), `RADC_PROFILE` = `sun` or `cielab`.
+#[test]
+#[ignore]
+fn profile_loop() {
+    let Some(lib) = library_dir() else { return };
+    let which = std::env::var("RADC_PROFILE").unwrap_or_else(|_| "sun".into());
+    let (file, expr) = match which.as_str() {
+        "cielab" => (
+            "cielab.cal",
+            "$1=Ls($2);$2=as($1,$2,$3);$3=bs($1,$2,$3);$4=Cs($1,$2,$3);$5=bfunc($1)",
+        ),
+        _ => ("sun.cal", "MONTH=$1;DAY=$2;TIME=$3;$1=SALT;$2=SAZI;$3=HALFDAY"),
+    };
+    let Ok(text) = std::fs::read_to_string(lib.join(file)) else {
+        return;
+    };
+    let m = module(&[&text, expr], &Env::rcalc());
+    let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
+    let all = c.entry("$*").expect("entry");
+    let mut ctx = c.context();
+    let mut out = Vec::new();
+    let mut sum = 0.0;
+    for i in 0..200_000 {
+        let t = (i % 64) as f64 / 64.0;
+        let row = if which == "cielab" {
+            [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
+        } else {
+            [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
+        };
+        ctx.next_record();
+        out.clear();
+        c.eval_outputs(all, &mut ctx, &mut Cols(&row), &mut out)
+            .expect("evaluates");
+        sum += out[0];
+    }
+    eprintln!("{sum}");
+}

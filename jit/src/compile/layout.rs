@@ -16,6 +16,12 @@ pub const ERRNO_RANGE: u64 = 2;
 /// A `:` value never expires (the interpreter's `FOREVER`).
 pub const FOREVER: u64 = u64::MAX;
 
+/// The first call depth that is reported (with a warning; `Raw::next_report` starts
+/// here and only grows, and "too deep" is further still): below it a call needs no
+/// depth check.
+pub const FIRST_DEPTH_REPORT: u64 = 100;
+const _: () = assert!(radc_lang::cal::eval::MAX_DEPTH >= FIRST_DEPTH_REPORT);
+
 /// A symbol id meaning "no name": the interpreter reports `?` there.
 pub const NO_SYM: u32 = u32::MAX;
 

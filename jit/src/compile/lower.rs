@@ -139,6 +139,12 @@ pub struct Lower<'a, 'b, 'm> {
     /// Variables whose bodies are being inlined (a body refers to itself, or to a
     /// variable around it, through the cache as usual).
     inlining_vars: Vec<DefId>,
+    /// The call depth (`Raw::depth`) here, when known while compiling: in an entry
+    /// function, which `Compiled::run` starts at depth 0, every change of depth is
+    /// a constant (inlined calls and their arguments; the functions it calls give
+    /// the depth back as they found it). Below the first report level, where no
+    /// depth event can happen, there is then nothing to check.
+    depth: Option<u64>,
     /// The variable whose body this function is (`Job::Var`).
     job_var: Option<DefId>,
     /// Value numbers of values, and of keys (see [`Vn`]).
@@ -189,6 +195,10 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             restore: None,
             restores: Vec::new(),
             inlining_vars: Vec::new(),
+            depth: match &job {
+                Job::Entry { .. } => Some(0),
+                _ => None,
+            },
             job_var: match &job {
                 Job::Var(d) => Some(*d),
                 _ => None,
@@ -373,7 +383,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     /// `Evaluator::call`'s depth bookkeeping for a call entering nesting `depth`.
-    fn depth_event(&mut self, sym: u32, depth: Value) {
+    /// Nothing to do below the first report level when the depth is `known`.
+    fn depth_event(&mut self, sym: u32, depth: Value, known: Option<u64>) {
+        if known.is_some_and(|d| d < FIRST_DEPTH_REPORT) {
+            return;
+        }
         let limit = self.load_raw(types::I64, OFF_DEPTH_LIMIT);
         let hit = self
             .b
@@ -389,6 +403,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn add_depth(&mut self, delta: i64) -> Value {
+        if let Some(d) = self.depth {
+            // Stored for the functions this one calls, which read it.
+            let d = d.wrapping_add_signed(delta);
+            self.depth = Some(d);
+            let v = self.i64c(d);
+            self.store_raw(v, OFF_DEPTH);
+            return v;
+        }
         let d = self.load_raw(types::I64, OFF_DEPTH);
         let d = self.b.ins().iadd_imm_s(d, delta);
         self.store_raw(d, OFF_DEPTH);
@@ -419,7 +441,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let sym = self.st.module.def(def).sym.0;
         self.stack_check(sym);
         let d = self.add_depth(1);
-        self.depth_event(sym, d);
+        self.depth_event(sym, d, self.depth);
         let body = &self.st.module.def(def).body;
         let v = self.expr(body)?;
         self.add_depth(-1);
@@ -1079,7 +1101,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     fn inline_call(&mut self, def: DefId, sym: u32, args: &'m [Expr]) -> R<Value> {
         self.st.compiled_defs.insert(def);
         let d = self.add_depth(1);
-        self.depth_event(sym, d);
+        self.depth_event(sym, d, self.depth);
         let zero = self.b.ins().iconst(types::I8, 0);
         let nothing = self.f64c(0.0);
         let mut vars = Vec::with_capacity(args.len());
@@ -1450,9 +1472,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// but its arguments are evaluated back at the caller's depth, so only the check
     /// is needed here.
     fn lib_enter(&mut self, sym: u32) {
+        if let Some(d) = self.depth {
+            let v = self.i64c(d + 1);
+            self.depth_event(sym, v, Some(d + 1));
+            return;
+        }
         let d = self.load_raw(types::I64, OFF_DEPTH);
         let d = self.b.ins().iadd_imm_s(d, 1);
-        self.depth_event(sym, d);
+        self.depth_event(sym, d, None);
     }
 
     fn lib_arg(&mut self, args: &'m [Expr], i: usize, sym: u32) -> R<Value> {

@@ -336,6 +336,10 @@ impl Context {
     pub fn set_stack_budget(&mut self, bytes: usize) {
         self.stack_budget = bytes;
     }
+
+    pub fn stack_budget(&self) -> usize {
+        self.stack_budget
+    }
 }
 
 impl Compiled {
@@ -368,7 +372,7 @@ impl Compiled {
                 errno: layout::ERRNO_NONE,
                 failed: 0,
                 depth: 0,
-                depth_limit: 100,
+                depth_limit: layout::FIRST_DEPTH_REPORT,
                 stack_limit: 0,
                 cache: std::ptr::null_mut(),
                 hosts: std::ptr::null(),
@@ -376,7 +380,7 @@ impl Compiled {
                 out: std::ptr::null_mut(),
                 done: 0,
                 input: std::ptr::null_mut(),
-                next_report: 100,
+                next_report: layout::FIRST_DEPTH_REPORT,
                 warnings: Vec::new(),
                 error: None,
                 tables: Arc::clone(&self.tables),

@@ -11,6 +11,7 @@ use radc_lang::cal::eval::{Input, MathErrors, NoInput, Warning};
 use radc_lang::cal::ir::Expr;
 use radc_lang::cal::syntax::DefKind;
 use std::fmt;
+use std::sync::Arc;
 
 /// Why a [`JitProgram`] could not start: an error rcalc itself reports, or a program
 /// the JIT declines (run it with the interpreter instead).
@@ -30,7 +31,8 @@ impl fmt::Display for StartError {
 }
 
 pub struct JitProgram {
-    compiled: Compiled,
+    /// Shared by the engines [`JitProgram::fork`] makes.
+    compiled: Arc<Compiled>,
     ctx: Context,
     cond: Option<Entry>,
     /// The output columns, ascending, and the entry computing them all.
@@ -101,6 +103,7 @@ impl JitProgram {
             .map(|k| entry(&format!("#{k}")))
             .collect::<Result<Vec<_>, StartError>>()?;
         let ctx = compiled.context();
+        let compiled = Arc::new(compiled);
         Ok(JitProgram {
             recno: compiled.host_index("recno"),
             outno: compiled.host_index("outno"),
@@ -115,6 +118,27 @@ impl JitProgram {
             nout: 0,
             partial: Vec::new(),
         })
+    }
+
+    /// Another engine running the same compiled code (for another thread), with its
+    /// own context, and record counts from 0: no second compilation.
+    pub fn fork(&self) -> Self {
+        let mut ctx = self.compiled.context();
+        ctx.set_stack_budget(self.ctx.stack_budget());
+        JitProgram {
+            compiled: Arc::clone(&self.compiled),
+            ctx,
+            cond: self.cond,
+            columns: self.columns.clone(),
+            outputs: self.outputs,
+            values: Vec::new(),
+            fields: self.fields.clone(),
+            recno: self.recno,
+            outno: self.outno,
+            nrecs: 0,
+            nout: 0,
+            partial: Vec::new(),
+        }
     }
 
     /// Native stack the compiled code may use (see [`Context::set_stack_budget`]).
