@@ -145,6 +145,10 @@ pub struct Lower<'a, 'b, 'm> {
     /// the depth back as they found it). Below the first report level, where no
     /// depth event can happen, there is then nothing to check.
     depth: Option<u64>,
+    /// `Raw::cache` and `Raw::clock`, loaded once: neither changes while generated
+    /// code runs.
+    cache_ptr: Value,
+    clock: Value,
     /// The variable whose body this function is (`Job::Var`).
     job_var: Option<DefId>,
     /// Value numbers of values, and of keys (see [`Vn`]).
@@ -171,6 +175,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         b.switch_to_block(entry);
         let params = b.block_params(entry).to_vec();
         let raw = params[0];
+        let fixed = mem().with_readonly();
+        let cache_ptr = b.ins().load(st.ptr, fixed, raw, OFF_CACHE);
+        let clock = b.ins().load(types::I64, fixed, raw, OFF_CLOCK);
         let (owner, block) = match &job {
             Job::Func(d) => (Some(*d), params.get(1).copied()),
             Job::Thunk { owner: Some(d), .. } => (Some(*d), params.get(1).copied()),
@@ -195,6 +202,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             restore: None,
             restores: Vec::new(),
             inlining_vars: Vec::new(),
+            cache_ptr,
+            clock,
             depth: match &job {
                 Job::Entry { .. } => Some(0),
                 _ => None,
@@ -404,17 +413,24 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
 
     fn add_depth(&mut self, delta: i64) -> Value {
         if let Some(d) = self.depth {
-            // Stored for the functions this one calls, which read it.
+            // Stored only for the functions this one calls (`sync_depth`).
             let d = d.wrapping_add_signed(delta);
             self.depth = Some(d);
-            let v = self.i64c(d);
-            self.store_raw(v, OFF_DEPTH);
-            return v;
+            return self.i64c(d);
         }
         let d = self.load_raw(types::I64, OFF_DEPTH);
         let d = self.b.ins().iadd_imm_s(d, delta);
         self.store_raw(d, OFF_DEPTH);
         d
+    }
+
+    /// Before calling code that reads `Raw::depth` (generated functions, thunks,
+    /// calls through function values): the depth known while compiling, stored.
+    fn sync_depth(&mut self) {
+        if let Some(d) = self.depth {
+            let v = self.i64c(d);
+            self.store_raw(v, OFF_DEPTH);
+        }
     }
 
     // ---- function bodies ------------------------------------------------------------
@@ -450,13 +466,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
 
     /// Whether the cache slot holds a value for the current record (or for good).
     fn fresh(&mut self, def: DefId, idx: u32) -> Value {
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
         let tick = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         if is_constant(self.st.module, def) {
             self.b.ins().icmp_imm_s(IntCC::Equal, tick, FOREVER as i64)
         } else {
-            let clock = self.load_raw(types::I64, OFF_CLOCK);
+            let clock = self.clock;
             let same = self.b.ins().icmp(IntCC::Equal, tick, clock);
             let set = self.b.ins().icmp_imm_s(IntCC::NotEqual, tick, 0);
             self.b.ins().band(same, set)
@@ -464,7 +480,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn cached_value(&mut self, idx: u32) -> Value {
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
         self.b.ins().load(types::F64, mem(), cache, off + OFF_VALUE)
     }
@@ -495,9 +511,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let tick = if is_constant(module, def) {
             self.i64c(FOREVER)
         } else {
-            self.load_raw(types::I64, OFF_CLOCK)
+            self.clock
         };
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
         let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
@@ -895,6 +911,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let f = self.func_ref(fid);
         if is_constant(module, def) && self.st.warn_nonconstant {
             // Every read warns: nothing to reuse.
+            self.sync_depth();
             let inst = self.b.ins().call(f, &[self.raw]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -927,8 +944,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
         let known = self.mark();
-        let tick = self.load_raw(types::I64, OFF_CLOCK);
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let tick = self.clock;
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
         let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
@@ -963,6 +980,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = self.cached_value(idx);
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
+        self.sync_depth();
         let inst = self.b.ins().call(f, &[self.raw]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
@@ -1012,6 +1030,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let parent = self.b.ins().load(self.st.ptr, mem(), block, OFF_PARENT);
         let sig = self.thunk_sig();
         let slot = self.b.ins().iadd_imm_s(block, i64::from(off));
+        self.sync_depth();
         let inst = self
             .b
             .ins()
@@ -1166,6 +1185,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             let fill = self.st.uses_fn_values(def);
             let block = self.build_block(args, CalleeName::Static(s), fill)?;
             let f = self.func_ref(fid);
+            self.sync_depth();
             let inst = self.b.ins().call(f, &[self.raw, block]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -1218,11 +1238,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.ins().brif(fp, direct, &[], via_host, &[]);
         self.b.switch_to_block(direct);
         let sig = self.uniform_sig();
+        self.sync_depth();
         let inst = self.b.ins().call_indirect(sig, fp, &[self.raw, new_block]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
         self.jump_with(j, v);
         self.b.switch_to_block(via_host);
+        self.sync_depth();
         let v = self.call_import_f64("radc_fnval", &[self.raw, new_block, code]);
         self.check_failed();
         self.jump_with(j, v);
@@ -1705,6 +1727,26 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let zero = self.fail(E_BAD_CALL, sym);
         self.jump_with(j, zero);
         self.b.switch_to_block(ok);
+        // Here 0 <= n < args.len().
+        if args.len() >= 4 {
+            let cases: Vec<ir::Block> = (0..args.len()).map(|_| self.b.create_block()).collect();
+            let calls: Vec<ir::BlockCall> = cases
+                .iter()
+                .map(|&c| self.b.func.dfg.block_call(c, &[]))
+                .collect();
+            let Some(&last) = calls.last() else {
+                return Ok(out);
+            };
+            let jt = self.b.create_jump_table(ir::JumpTableData::new(last, &calls));
+            let idx = self.b.ins().ireduce(types::I32, n);
+            self.b.ins().br_table(idx, jt);
+            for (k, &case) in cases.iter().enumerate() {
+                self.b.switch_to_block(case);
+                self.select_case(args, k, sym, j)?;
+            }
+            self.b.switch_to_block(j);
+            return Ok(out);
+        }
         for k in 0..args.len() {
             let case = self.b.create_block();
             if k + 1 < args.len() {
