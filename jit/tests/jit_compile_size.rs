@@ -248,7 +248,10 @@ fn profile_loop() {
             "cielab.cal",
             "$1=Ls($2);$2=as($1,$2,$3);$3=bs($1,$2,$3);$4=Cs($1,$2,$3);$5=bfunc($1)",
         ),
-        _ => ("sun.cal", "MONTH=$1;DAY=$2;TIME=$3;$1=SALT;$2=SAZI;$3=HALFDAY"),
+        _ => (
+            "sun.cal",
+            "MONTH=$1;DAY=$2;TIME=$3;$1=SALT;$2=SAZI;$3=HALFDAY",
+        ),
     };
     let Ok(text) = std::fs::read_to_string(lib.join(file)) else {
         return;

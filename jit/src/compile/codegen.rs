@@ -440,6 +440,14 @@ pub fn drain(state: &mut State<'_>) -> Result<(), JitError> {
             .jit
             .define_function(id, &mut ctx)
             .map_err(|e| JitError::Backend(format!("{e:?}")))?;
+        if let Some(dir) = std::env::var_os("RADC_JIT_CODE_DIR")
+            && let Some(c) = ctx.compiled_code()
+        {
+            let _ = std::fs::write(
+                std::path::Path::new(&dir).join(format!("f{}.bin", id.as_u32())),
+                c.code_buffer(),
+            );
+        }
         if dump {
             eprintln!("{}", ctx.func.display());
             if let Some(c) = ctx.compiled_code() {

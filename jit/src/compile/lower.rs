@@ -472,10 +472,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         if is_constant(self.st.module, def) {
             self.b.ins().icmp_imm_s(IntCC::Equal, tick, FOREVER as i64)
         } else {
-            let clock = self.clock;
-            let same = self.b.ins().icmp(IntCC::Equal, tick, clock);
-            let set = self.b.ins().icmp_imm_s(IntCC::NotEqual, tick, 0);
-            self.b.ins().band(same, set)
+            // Never-computed slots hold 0, and the clock is never 0 (a context
+            // starts at 1 and wraps to 1).
+            self.b.ins().icmp(IntCC::Equal, tick, self.clock)
         }
     }
 
@@ -1737,7 +1736,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             let Some(&last) = calls.last() else {
                 return Ok(out);
             };
-            let jt = self.b.create_jump_table(ir::JumpTableData::new(last, &calls));
+            let jt = self
+                .b
+                .create_jump_table(ir::JumpTableData::new(last, &calls));
             let idx = self.b.ins().ireduce(types::I32, n);
             self.b.ins().br_table(idx, jt);
             for (k, &case) in cases.iter().enumerate() {

@@ -365,10 +365,16 @@ impl Compiled {
         self.instructions
     }
 
+    /// A new evaluation context, in its first record: `=` values computed now are
+    /// kept until [`Context::next_record`]. (An interpreter `Evaluator` keeps
+    /// nothing before its first `next_record`; the JIT's code relies on values not
+    /// changing within a record, so it has no such state. Drivers that start every
+    /// record with `next_record`, as `radc calc`'s do, see no difference.)
     pub fn context(&self) -> Context {
         Context {
             raw: Raw {
-                clock: 0,
+                // In its first record already (see `Compiled::context`).
+                clock: 1,
                 errno: layout::ERRNO_NONE,
                 failed: 0,
                 depth: 0,
