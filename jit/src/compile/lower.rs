@@ -562,7 +562,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                     let x = self.expr(x)?;
                     let k = self.op_key(OP_ADD, acc, x);
                     acc = self.memo(k, |lw| {
-                        let r = lw.b.ins().fadd(acc, x);
+                        let r = lw.commuted(acc, x, |b, p, q| b.ins().fadd(p, q));
                         lw.nan_first(acc, x, r)
                     });
                 }
@@ -578,7 +578,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                         Some(a) => {
                             let k = self.op_key(OP_MUL, a, x);
                             self.memo(k, |lw| {
-                                let r = lw.b.ins().fmul(a, x);
+                                let r = lw.commuted(a, x, |b, p, q| b.ins().fmul(p, q));
                                 lw.nan_first(a, x, r)
                             })
                         }
@@ -763,6 +763,23 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.know(key, v);
         self.label(v, key);
         v
+    }
+
+    /// `x op y` for a commutative IEEE operation (`+`, `*`: the same value either
+    /// way for operands that are not NaN, zeros' signs included), with a number that
+    /// is not NaN second, where the machine code can read it from memory; the NaN
+    /// cases are `nan_first`'s, which looks at the operands, not at the order.
+    fn commuted(
+        &mut self,
+        x: Value,
+        y: Value,
+        op: impl FnOnce(&mut FunctionBuilder<'b>, Value, Value) -> Value,
+    ) -> Value {
+        if self.not_nan(x) && !self.numbers.contains_key(&y) {
+            op(&mut self.b, y, x)
+        } else {
+            op(&mut self.b, x, y)
+        }
     }
 
     /// `Evaluator`'s `nan_first`: with a NaN operand, the first NaN operand itself
