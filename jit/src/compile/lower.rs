@@ -130,12 +130,12 @@ pub struct Lower<'a, 'b, 'm> {
     /// test the flag (those never computed before are computed without a test).
     maybe_computed: HashSet<(u32, u32)>,
     abort: Option<ir::Block>,
-    /// A variable body's abort path: the block, the cache, the slot's offset and
-    /// the stamp to put back; emitted after the body.
-    restore: Option<(ir::Block, Value, i32, Value)>,
+    /// A variable body's abort path: the block, the cache and the slot's offset;
+    /// emitted after the body.
+    restore: Option<(ir::Block, Value, i32)>,
     /// The abort paths of inlined variable bodies: as `restore`, then on to the
     /// abort path that was in force around the body.
-    restores: Vec<(ir::Block, Value, i32, Value, ir::Block)>,
+    restores: Vec<(ir::Block, Value, i32, ir::Block)>,
     /// Variables whose bodies are being inlined (a body refers to itself, or to a
     /// variable around it, through the cache as usual).
     inlining_vars: Vec<DefId>,
@@ -230,14 +230,16 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             },
         };
         lw.b.ins().return_(&[v]);
-        for (block, cache, off, before, then) in std::mem::take(&mut lw.restores) {
+        for (block, cache, off, then) in std::mem::take(&mut lw.restores) {
             lw.b.switch_to_block(block);
-            lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
+            let never = lw.i64c(0);
+            lw.b.ins().store(mem(), never, cache, off + OFF_TICK);
             lw.b.ins().jump(then, &[]);
         }
-        if let Some((block, cache, off, before)) = lw.restore {
+        if let Some((block, cache, off)) = lw.restore {
             lw.b.switch_to_block(block);
-            lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
+            let never = lw.i64c(0);
+            lw.b.ins().store(mem(), never, cache, off + OFF_TICK);
             let zero = lw.b.ins().f64const(0.0);
             lw.b.ins().return_(&[zero]);
         }
@@ -514,10 +516,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         };
         let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
-        let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
-        // A fatal error in the body leaves the slot as it was: every abort from
-        // here on restores the stamp first.
+        // A fatal error in the body leaves the slot stale, as the interpreter's
+        // restored stamp does: every abort from here on stamps it "never computed"
+        // (0), stale at this clock and every later one as the stamp it had was
+        // (missing, it was an earlier clock, or 0; `:` slots missing hold 0) until
+        // the clock wraps after 2^64 records. No old stamp stays live across the
+        // body (it held a register through every call). The value is untouched.
         let outer_abort = self.abort.take();
         let restore = self.b.create_block();
         self.b.set_cold_block(restore);
@@ -525,7 +530,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = self.expr(&d.body)?;
         self.check_failed();
         self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
-        self.restore = Some((restore, cache, off, before));
+        self.restore = Some((restore, cache, off));
         self.abort = outer_abort;
         Ok(v)
     }
@@ -963,7 +968,6 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let tick = self.clock;
         let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
-        let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
         let outer = self.abort_block();
         let restore = self.b.create_block();
@@ -978,7 +982,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = v?;
         self.abort = Some(outer);
         self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
-        self.restores.push((restore, cache, off, before, outer));
+        self.restores.push((restore, cache, off, outer));
         self.rewind(known);
         self.jump_with(j, v);
         self.b.switch_to_block(j);
