@@ -65,7 +65,7 @@ fn inlining_is_bounded_per_program() {
     // program is a real test of the bound.
     assert!(u > 3 * b, "budget {b}, no budget {u}");
     // With it, at most a few times what no inlining at all generates.
-    assert!(b < 4 * n + 20_000, "budget {b}, no inlining {n}");
+    assert!(b < 5 * n, "budget {b}, no inlining {n}");
     // And every setting computes the same.
     let row = [0.3, 0.5, 0.2];
     let mut want = None;
@@ -149,7 +149,9 @@ fn xyz_rgb_compiles_small() {
     let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
     let n = c.instruction_count();
     eprintln!("xyz_rgb.cal: {n} instructions");
-    assert!(n < 40_000, "{n} instructions");
+    // 11,207 with the default budget (1000 nodes); 34,325 at 3000 nodes, which
+    // took 84 ms to compile; 130,000 with no budget.
+    assert!(n < 16_000, "{n} instructions");
 }
 
 /// Every library file, every definition an entry point (as the bench's "library
@@ -203,7 +205,8 @@ fn every_library_file_compiles_small() {
         "largest library file: {} ({} instructions)",
         worst.1, worst.0
     );
-    assert!(worst.0 < 60_000, "{} instructions for {}", worst.0, worst.1);
+    // rayinit.cal, every definition: 15,582 with the default budget.
+    assert!(worst.0 < 24_000, "{} instructions for {}", worst.0, worst.1);
 }
 
 /// Not a test: compile time and code size of xyz_rgb.cal against the budget

@@ -41,7 +41,7 @@ pub const INLINE_VAR_NESTING: usize = 6;
 /// branches (xyz_rgb.cal's `select` over nine expressions of the same derived
 /// constants) were inlined again in every branch of every function, and took 2 s to
 /// compile.
-pub const INLINE_BUDGET: usize = 3000;
+pub const INLINE_BUDGET: usize = 1000;
 
 /// One function to generate.
 pub enum Job<'m> {

@@ -120,7 +120,7 @@ impl Jit {
     }
 
     /// How many expression nodes inlining may add to the program, in place of the
-    /// default (3000): 0 inlines nothing. Results are the same whatever the budget;
+    /// default (1000): 0 inlines nothing. Results are the same whatever the budget;
     /// speed and compile time are not.
     pub fn with_inline_budget(mut self, nodes: usize) -> Self {
         self.inline_budget = Some(nodes);
