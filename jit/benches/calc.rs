@@ -1,5 +1,6 @@
 //! calcomp evaluation speed: the reference interpreter against the JIT, per record
-//! (every output column of the program evaluated once, on a fresh record clock), on
+//! (every output column of the program evaluated once, on a fresh record clock: the
+//! interpreter column by column, the JIT by its `$*` entry as `radc calc` runs it), on
 //! functions of Radiance's `.cal` library and a typical pattern function; plus the
 //! JIT's compile time. Library programs need the oracle (`tests/oracle/install.sh`);
 //! without it only the self-contained programs run.
@@ -21,16 +22,23 @@ use std::hint::black_box;
 use std::path::PathBuf;
 
 /// The machine is shared: wall-clock time mostly measures the other processes, so
-/// this bench measures the thread's own CPU time (from `/proc/thread-self/schedstat`).
+/// this bench measures the thread's own CPU time (`CLOCK_THREAD_CPUTIME_ID`; the
+/// first field of `/proc/thread-self/schedstat`, used before, reads 0 on kernels
+/// without scheduler statistics).
 struct CpuTime;
 
-/// This thread's CPU time in nanoseconds: the first field of
-/// `/proc/thread-self/schedstat` (time spent running), 0 where it cannot be read.
+/// This thread's CPU time in nanoseconds, 0 where it cannot be read.
 fn thread_cpu_ns() -> u64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse().ok())
-        .unwrap_or(0)
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    if rc != 0 {
+        return 0;
+    }
+    (ts.tv_sec as u64) * 1_000_000_000 + ts.tv_nsec as u64
 }
 
 impl Measurement for CpuTime {
@@ -221,10 +229,6 @@ fn module(p: &Program, lib: Option<&PathBuf>) -> Option<Module> {
     Some(m)
 }
 
-fn entries(m: &Module) -> Vec<String> {
-    m.outputs().keys().map(|c| format!("${c}")).collect()
-}
-
 fn bench(c: &mut Criterion<CpuTime>) {
     let lib = library_dir();
     if lib.is_none() {
@@ -234,13 +238,19 @@ fn bench(c: &mut Criterion<CpuTime>) {
         let Some(m) = module(&p, lib.as_ref()) else {
             continue;
         };
-        let names = entries(&m);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let names = ["$*"];
         let Ok(compiled) = Jit::new().compile(&m, &names) else {
             eprintln!("notice: {}: not compiled", p.name);
             continue;
         };
-        let handles: Vec<_> = names.iter().filter_map(|n| compiled.entry(n)).collect();
+        let Some(all) = compiled.entry("$*") else {
+            continue;
+        };
+        eprintln!(
+            "{}: {} Cranelift instructions",
+            p.name,
+            compiled.instruction_count()
+        );
         let bodies: Vec<_> = m.outputs().values().map(|o| &o.body).collect();
         let mut group = c.benchmark_group(p.name);
         let mut ev = Evaluator::new(&m);
@@ -258,15 +268,16 @@ fn bench(c: &mut Criterion<CpuTime>) {
         });
         let mut ctx = compiled.context();
         let mut i = 0;
+        let mut out = Vec::new();
         group.bench_function("JIT (ns/record)", |b| {
             b.iter(|| {
                 let row = &p.rows[i % p.rows.len()];
                 i += 1;
                 ctx.next_record();
                 let mut input = Columns(row);
-                for &h in &handles {
-                    black_box(compiled.eval(h, &mut ctx, &mut input).unwrap_or(0.0));
-                }
+                out.clear();
+                let ok = compiled.eval_outputs(all, &mut ctx, &mut input, &mut out);
+                black_box((ok.is_ok(), &out));
             })
         });
         group.bench_function("JIT compile", |b| {
@@ -322,16 +333,21 @@ fn bench_library(c: &mut Criterion<CpuTime>) {
     let programs = library_programs(&lib);
     let mut functions = 0;
     let mut entries = 0;
+    let mut instructions = 0;
     for (m, names) in &programs {
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
         entries += names.len();
         match Jit::new().compile(m, &names) {
-            Ok(c) => functions += c.function_count(),
+            Ok(c) => {
+                functions += c.function_count();
+                instructions += c.instruction_count();
+            }
             Err(e) => eprintln!("notice: library program not compiled: {e}"),
         }
     }
     eprintln!(
-        "library: {} files, {entries} entry points, {functions} variable and function bodies",
+        "library: {} files, {entries} entry points, {functions} variable and function \
+         bodies, {instructions} Cranelift instructions",
         programs.len()
     );
     let mut group = c.benchmark_group("library compile");

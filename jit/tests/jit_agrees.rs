@@ -358,3 +358,39 @@ fn reused_and_folded_library_calls() {
         MathErrors::NonFinite,
     );
 }
+
+/// Every output column is one call (`$*`): what one column computed, later columns
+/// and other branches reuse (input columns, with the `errno` an overflowing field
+/// raises each time it is read; library results on equal values; variables), and a
+/// fatal error keeps the columns before it.
+#[test]
+fn results_shared_across_columns_and_branches() {
+    let rows = &["1\t2\t3", "1e999\t-1\t0", "-1e999\t0.5\tnan", "0\t0\t0"];
+    agree(
+        "$1=sin($1); $2=sin($1)+cos($2); $3=if($2, sin($1), cos($2)); $4=if($3-1, $1^(1/3), 0)+$1^(1/3);\
+         $5=select($3+2, atan2($1,$2), exp($2), atan2($1,$2)); $6=sin($1)*atan2($1,$2)",
+        rows,
+    );
+    // A variable's own previous value is not its value.
+    agree(
+        "a=if($1, sin(a)+1, 2); b=sin(a)+a; $1=a; $2=sin(a); $3=b; $4=if($2, sin(a), a)",
+        rows,
+    );
+    // cielab.cal's shape: one function on the same values from several columns.
+    agree(
+        "d:6/29; bf(x):if(x-d*d*d, x^(1/3), x/(3*d*d)+2/3*d); L(y):116*bf(y)-16;\
+         A(x,y):500*(bf(x)-bf(y)); B(y,z):200*(bf(y)-bf(z)); C(x,y,z):sqrt(A(x,y)^2+B(y,z)^2);\
+         $1=L($2); $2=A($1,$2); $3=B($2,$3); $4=C($1,$2,$3); $5=bf($1)",
+        rows,
+    );
+    // A fatal error in a later column keeps the earlier ones.
+    agree(
+        "$1=sin($1); $2=if($2, sin($1), nosuch); $3=sin($1)",
+        &["1\t1", "1\t-1", "2\t1"],
+    );
+    agree_with(
+        "$1=sin($1)+$2^0.5; $2=$2^0.5+log($3); $3=if($1, log($3), $2^0.5)",
+        rows,
+        MathErrors::NonFinite,
+    );
+}

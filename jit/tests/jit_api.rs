@@ -192,3 +192,38 @@ fn one_program_many_threads() {
         }
     });
 }
+
+/// A new context is in its first record already: `=` values are computed once until
+/// `next_record`, as for an interpreter on which `next_record` was called (the
+/// interpreter alone, before its first one, keeps nothing).
+#[test]
+fn a_new_context_is_in_its_first_record() {
+    use radc_lang::cal::eval::{Evaluator, NoInput};
+    let m = module("a = 1/in(0) + 1; b = a + a; $1 = b + a; $2 = a*a");
+    let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
+    let all = c.entry("$*").expect("$*");
+    let mut ev = Evaluator::new(&m);
+    ev.next_record();
+    let mut ctx = c.context();
+    let bodies: Vec<_> = m.outputs().values().map(|o| &o.body).collect();
+    for round in 0..4 {
+        if round % 2 == 1 {
+            ev.next_record();
+            ctx.next_record();
+        }
+        let mut want = Vec::new();
+        for body in &bodies {
+            want.push(ev.eval_top(body, &mut NoInput).map(f64::to_bits));
+        }
+        let mut got = Vec::new();
+        c.eval_outputs(all, &mut ctx, &mut NoInput, &mut got)
+            .expect("evaluates");
+        let got: Vec<_> = got.iter().map(|v| Ok(v.to_bits())).collect();
+        assert_eq!(got, want, "round {round}");
+        let warned = ctx.take_warnings();
+        // `a` is computed (and warns) once per record.
+        let expected = if round % 2 == 1 || round == 0 { 1 } else { 0 };
+        assert_eq!(warned.len(), expected, "round {round}: {warned:?}");
+        assert_eq!(warned, std::mem::take(&mut ev.warnings), "round {round}");
+    }
+}

@@ -26,15 +26,22 @@ pub const MAX_NODES: usize = 2_000_000;
 /// User functions up to this many expression nodes (callees they inline counted in)
 /// are inlined at their call sites instead of called: no argument block, no thunks,
 /// no indirect calls, and the optimiser sees through them.
-pub const INLINE_NODES: usize = 60;
+pub const INLINE_NODES: usize = 160;
 
 /// `=` variables up to this many nodes are inlined at their uses, up to
-/// [`INLINE_VAR_NESTING`] variables within each other. Off (no variable has 0 nodes): inlining variables
-/// multiplies code along chains of definitions, and on library files such as
-/// xyz_rgb.cal took compilation from 30 ms to 2 s, the cost of a whole render's
-/// evaluations; function inlining is held to 60 nodes for the same reason.
-pub const INLINE_VAR_NODES: usize = 0;
-pub const INLINE_VAR_NESTING: usize = 1;
+/// [`INLINE_VAR_NESTING`] variables within each other.
+pub const INLINE_VAR_NODES: usize = 48;
+pub const INLINE_VAR_NESTING: usize = 6;
+
+/// What inlining may add to a whole program, in expression nodes: every inlined
+/// call or variable body is charged its size (a function with the callees it
+/// inlines), first come first served, and once the budget is spent calls and
+/// variable reads are generated as calls. Inlining is cheap to compile where few
+/// definitions are reached; without a bound, chains of variables used in many
+/// branches (xyz_rgb.cal's `select` over nine expressions of the same derived
+/// constants) were inlined again in every branch of every function, and took 2 s to
+/// compile.
+pub const INLINE_BUDGET: usize = 1000;
 
 /// One function to generate.
 pub enum Job<'m> {
@@ -57,6 +64,8 @@ pub enum Job<'m> {
 pub enum EntryBody<'m> {
     Variable(SymId),
     Output(&'m Expr),
+    /// Several outputs in order, each stored at `Raw::out` as it is computed.
+    Outputs(&'m [&'m Expr]),
 }
 
 /// What the lowering needs to know and may add to while it runs.
@@ -85,6 +94,11 @@ pub struct State<'m> {
     pub thunks: HashMap<(Option<DefId>, (u8, u32)), FuncId>,
     /// Inlined size of user functions, `None` for those never inlined.
     pub inline_costs: HashMap<DefId, Option<usize>>,
+    /// Nodes inlining may still add to the program (see [`INLINE_BUDGET`]).
+    pub inline_budget: usize,
+    /// Cranelift instructions generated so far (before optimisation), for
+    /// [`super::Compiled::instruction_count`].
+    pub instructions: usize,
     pub queue: Vec<Job<'m>>,
 }
 
@@ -175,6 +189,8 @@ impl<'m> State<'m> {
             uses_fn_values: HashMap::new(),
             thunks: HashMap::new(),
             inline_costs: HashMap::new(),
+            inline_budget: INLINE_BUDGET,
+            instructions: 0,
             queue: Vec::new(),
         })
     }
@@ -213,23 +229,35 @@ impl<'m> State<'m> {
         slot
     }
 
-    /// Whether a variable's body is small enough to inline at its uses (the
-    /// freshness test and the caching stay; see `Lower::inline_variable`).
-    pub fn var_inlinable(&self, def: DefId) -> bool {
+    /// The size of a variable's body if it is small enough to inline at its uses
+    /// (the freshness test and the caching stay; see `Lower::inline_variable`).
+    pub fn var_inline_size(&self, def: DefId) -> Option<usize> {
         let d = self.module.def(def);
         if d.kind != DefKind::Assign || self.host_vars.contains_key(&def) {
-            return false;
+            return None;
         }
         let mut nodes = 0;
         let mut stack = vec![&d.body];
         while let Some(e) = stack.pop() {
             nodes += 1;
             if nodes > INLINE_VAR_NODES {
-                return false;
+                return None;
             }
             stack.extend(e.children());
         }
-        true
+        Some(nodes)
+    }
+
+    /// Take `nodes` from the program's inlining budget; false (taking nothing) if
+    /// that much is not left.
+    pub fn charge_inline(&mut self, nodes: usize) -> bool {
+        match self.inline_budget.checked_sub(nodes) {
+            Some(left) => {
+                self.inline_budget = left;
+                true
+            }
+            None => false,
+        }
     }
 
     /// The uniform function of a user function definition, declared on first use.
@@ -270,12 +298,12 @@ impl<'m> State<'m> {
         Ok(id)
     }
 
-    /// Whether calls of a user function are inlined: it is not recursive (not even
-    /// through other functions), never calls through a parameter, every user function
-    /// it calls is inlined too (so inlined code never builds an argument block that
-    /// would need thunks for its parameters), and all that is small.
-    pub fn inlinable(&mut self, def: DefId) -> bool {
-        self.inline_cost(def, &mut Vec::new()).is_some()
+    /// Whether calls of a user function can be inlined: it is not recursive (not
+    /// even through other functions), never calls through a parameter, every user
+    /// function it calls is inlined too (so inlined code never builds an argument
+    /// block that would need thunks for its parameters), and all that is small.
+    pub fn inline_size(&mut self, def: DefId) -> Option<usize> {
+        self.inline_cost(def, &mut Vec::new())
     }
 
     fn inline_cost(&mut self, def: DefId, visiting: &mut Vec<DefId>) -> Option<usize> {
@@ -403,6 +431,7 @@ pub fn drain(state: &mut State<'_>) -> Result<(), JitError> {
             let b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
             Lower::build(b, state, job)?;
         }
+        state.instructions += ctx.func.dfg.num_insts();
         let dump = std::env::var_os("RADC_JIT_DUMP").is_some();
         if dump {
             ctx.set_disasm(true);
@@ -411,6 +440,14 @@ pub fn drain(state: &mut State<'_>) -> Result<(), JitError> {
             .jit
             .define_function(id, &mut ctx)
             .map_err(|e| JitError::Backend(format!("{e:?}")))?;
+        if let Some(dir) = std::env::var_os("RADC_JIT_CODE_DIR")
+            && let Some(c) = ctx.compiled_code()
+        {
+            let _ = std::fs::write(
+                std::path::Path::new(&dir).join(format!("f{}.bin", id.as_u32())),
+                c.code_buffer(),
+            );
+        }
         if dump {
             eprintln!("{}", ctx.func.display());
             if let Some(c) = ctx.compiled_code() {

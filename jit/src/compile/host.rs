@@ -178,6 +178,7 @@ fn channel(raw: &mut Raw, n: u32) -> f64 {
     let input = unsafe { &mut *(raw.input as *mut &mut dyn Input) };
     match input.column(n) {
         Ok((v, errno)) => {
+            raw.chan_errno = errno.map_or(ERRNO_NONE, errno_code);
             if let Some(e) = errno {
                 raw.errno = errno_code(e);
             }

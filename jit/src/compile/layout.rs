@@ -16,6 +16,12 @@ pub const ERRNO_RANGE: u64 = 2;
 /// A `:` value never expires (the interpreter's `FOREVER`).
 pub const FOREVER: u64 = u64::MAX;
 
+/// The first call depth that is reported (with a warning; `Raw::next_report` starts
+/// here and only grows, and "too deep" is further still): below it a call needs no
+/// depth check.
+pub const FIRST_DEPTH_REPORT: u64 = 100;
+const _: () = assert!(radc_lang::cal::eval::MAX_DEPTH >= FIRST_DEPTH_REPORT);
+
 /// A symbol id meaning "no name": the interpreter reports `?` there.
 pub const NO_SYM: u32 = u32::MAX;
 
@@ -45,6 +51,12 @@ pub struct Raw {
     pub stack_limit: u64,
     pub cache: *mut Cached,
     pub hosts: *const f64,
+    /// The `errno` code (0 for none) the last read of an input column raised.
+    pub chan_errno: u64,
+    /// Where an entry of every output column stores its values, and how many it
+    /// stored (`Compiled::eval_outputs`).
+    pub out: *mut f64,
+    pub done: u64,
     // ---- not read by generated code ----
     /// `*mut &mut dyn Input` during a call, else null.
     pub input: *mut c_void,
@@ -70,6 +82,9 @@ pub const OFF_DEPTH_LIMIT: i32 = offset_of!(Raw, depth_limit) as i32;
 pub const OFF_STACK_LIMIT: i32 = offset_of!(Raw, stack_limit) as i32;
 pub const OFF_CACHE: i32 = offset_of!(Raw, cache) as i32;
 pub const OFF_HOSTS: i32 = offset_of!(Raw, hosts) as i32;
+pub const OFF_CHAN_ERRNO: i32 = offset_of!(Raw, chan_errno) as i32;
+pub const OFF_OUT: i32 = offset_of!(Raw, out) as i32;
+pub const OFF_DONE: i32 = offset_of!(Raw, done) as i32;
 pub const CACHED_SIZE: i32 = std::mem::size_of::<Cached>() as i32;
 pub const OFF_TICK: i32 = offset_of!(Cached, tick) as i32;
 pub const OFF_VALUE: i32 = offset_of!(Cached, value) as i32;

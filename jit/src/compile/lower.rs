@@ -29,25 +29,43 @@ enum CalleeName {
     Dynamic(Value),
 }
 
-/// What the lowering knows has been computed on every path to the current point,
-/// with the value that holds it (see `Lower::known`).
+/// A value number: values with the same number are equal whenever both have been
+/// computed (in one call of the generated function), whichever paths computed them.
+type Vn = u32;
+
+/// What a value is, as far as the lowering can tell: the keys of what is known to be
+/// computed on every path to the current point (`Lower::known_args`) and of the value
+/// numbers (`Lower::vns`).
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 enum Key {
     /// Parameter `n` of frame `frame`: a slot's value never changes once computed.
     Arg(u32, u32),
-    /// A variable: its cached value does not change within a record.
+    /// A variable: its cached value does not change within a record (except while
+    /// the variable itself is being computed: reads of it in its own body see the
+    /// previous value, and are not given this key's value number).
     Var(u32),
-    /// The C library's result for an argument value (`pow` for two): the
-    /// functions are pure, so a second call with the same value reuses it (the
+    /// Input column `n`: the same within a record (`Input` is read, not consumed).
+    Chan(u32),
+    /// The `errno` code reading column `n` raised (an i64, 0 for none).
+    ChanErrno(u32),
+    /// The C library's result for an argument value (`pow` and `atan2` for two):
+    /// the functions are pure, so a second call with the same value reuses it (the
     /// `errno` and depth bookkeeping around the call is still done each time).
-    Call(Builtin, Value),
-    Pow(Value, Value),
+    Call(Builtin, Vn),
+    Pow(Vn, Vn),
+    Atan2(Vn, Vn),
     /// An exact arithmetic operation (kind, operands): the same operation on the
     /// same values is the same value, so later calls on it can be recognised.
-    Op(u8, Value, Value),
+    Op(u8, Vn, Vn),
     /// A number, by bits.
     Num(u64),
+    /// A value with no identity beyond itself.
+    Val(Value),
 }
+
+/// How many library results one generated function remembers across branches (each
+/// is two SSA variables: computed, and the value).
+const MAX_LAZY: usize = 48;
 
 const OP_ADD: u8 = 0;
 const OP_MUL: u8 = 1;
@@ -112,15 +130,34 @@ pub struct Lower<'a, 'b, 'm> {
     /// test the flag (those never computed before are computed without a test).
     maybe_computed: HashSet<(u32, u32)>,
     abort: Option<ir::Block>,
-    /// A variable body's abort path: the block, the cache, the slot's offset and
-    /// the stamp to put back; emitted after the body.
-    restore: Option<(ir::Block, Value, i32, Value)>,
+    /// A variable body's abort path: the block, the cache and the slot's offset;
+    /// emitted after the body.
+    restore: Option<(ir::Block, Value, i32)>,
     /// The abort paths of inlined variable bodies: as `restore`, then on to the
     /// abort path that was in force around the body.
-    restores: Vec<(ir::Block, Value, i32, Value, ir::Block)>,
+    restores: Vec<(ir::Block, Value, i32, ir::Block)>,
     /// Variables whose bodies are being inlined (a body refers to itself, or to a
     /// variable around it, through the cache as usual).
     inlining_vars: Vec<DefId>,
+    /// The call depth (`Raw::depth`) here, when known while compiling: in an entry
+    /// function, which `Compiled::run` starts at depth 0, every change of depth is
+    /// a constant (inlined calls and their arguments; the functions it calls give
+    /// the depth back as they found it). Below the first report level, where no
+    /// depth event can happen, there is then nothing to check.
+    depth: Option<u64>,
+    /// `Raw::cache` and `Raw::clock`, loaded once: neither changes while generated
+    /// code runs.
+    cache_ptr: Value,
+    clock: Value,
+    /// The variable whose body this function is (`Job::Var`).
+    job_var: Option<DefId>,
+    /// Value numbers of values, and of keys (see [`Vn`]).
+    vns: HashMap<Value, Vn>,
+    interned: HashMap<Key, Vn>,
+    next_vn: Vn,
+    /// Library results computed on some paths: whether (an i8) and what, as SSA
+    /// variables, so a later call on an equal argument tests instead of calling.
+    lazy: HashMap<Key, (Variable, Variable)>,
 }
 
 fn mem() -> MemFlagsData {
@@ -138,6 +175,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         b.switch_to_block(entry);
         let params = b.block_params(entry).to_vec();
         let raw = params[0];
+        let fixed = mem().with_readonly();
+        let cache_ptr = b.ins().load(st.ptr, fixed, raw, OFF_CACHE);
+        let clock = b.ins().load(types::I64, fixed, raw, OFF_CLOCK);
         let (owner, block) = match &job {
             Job::Func(d) => (Some(*d), params.get(1).copied()),
             Job::Thunk { owner: Some(d), .. } => (Some(*d), params.get(1).copied()),
@@ -162,6 +202,20 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             restore: None,
             restores: Vec::new(),
             inlining_vars: Vec::new(),
+            cache_ptr,
+            clock,
+            depth: match &job {
+                Job::Entry { .. } => Some(0),
+                _ => None,
+            },
+            job_var: match &job {
+                Job::Var(d) => Some(*d),
+                _ => None,
+            },
+            vns: HashMap::new(),
+            interned: HashMap::new(),
+            next_vn: 0,
+            lazy: HashMap::new(),
         };
         let v = match job {
             Job::Var(d) => lw.var_body(d)?,
@@ -172,17 +226,20 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Job::Entry { what, .. } => match what {
                 EntryBody::Variable(s) => lw.variable(s)?,
                 EntryBody::Output(e) => lw.expr(e)?,
+                EntryBody::Outputs(list) => lw.outputs(list)?,
             },
         };
         lw.b.ins().return_(&[v]);
-        for (block, cache, off, before, then) in std::mem::take(&mut lw.restores) {
+        for (block, cache, off, then) in std::mem::take(&mut lw.restores) {
             lw.b.switch_to_block(block);
-            lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
+            let never = lw.i64c(0);
+            lw.b.ins().store(mem(), never, cache, off + OFF_TICK);
             lw.b.ins().jump(then, &[]);
         }
-        if let Some((block, cache, off, before)) = lw.restore {
+        if let Some((block, cache, off)) = lw.restore {
             lw.b.switch_to_block(block);
-            lw.b.ins().store(mem(), before, cache, off + OFF_TICK);
+            let never = lw.i64c(0);
+            lw.b.ins().store(mem(), never, cache, off + OFF_TICK);
             let zero = lw.b.ins().f64const(0.0);
             lw.b.ins().return_(&[zero]);
         }
@@ -337,7 +394,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     /// `Evaluator::call`'s depth bookkeeping for a call entering nesting `depth`.
-    fn depth_event(&mut self, sym: u32, depth: Value) {
+    /// Nothing to do below the first report level when the depth is `known`.
+    fn depth_event(&mut self, sym: u32, depth: Value, known: Option<u64>) {
+        if known.is_some_and(|d| d < FIRST_DEPTH_REPORT) {
+            return;
+        }
         let limit = self.load_raw(types::I64, OFF_DEPTH_LIMIT);
         let hit = self
             .b
@@ -353,20 +414,52 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn add_depth(&mut self, delta: i64) -> Value {
+        if let Some(d) = self.depth {
+            // Stored only for the functions this one calls (`sync_depth`).
+            let d = d.wrapping_add_signed(delta);
+            self.depth = Some(d);
+            return self.i64c(d);
+        }
         let d = self.load_raw(types::I64, OFF_DEPTH);
         let d = self.b.ins().iadd_imm_s(d, delta);
         self.store_raw(d, OFF_DEPTH);
         d
     }
 
+    /// Before calling code that reads `Raw::depth` (generated functions, thunks,
+    /// calls through function values): the depth known while compiling, stored.
+    fn sync_depth(&mut self) {
+        if let Some(d) = self.depth {
+            let v = self.i64c(d);
+            self.store_raw(v, OFF_DEPTH);
+        }
+    }
+
     // ---- function bodies ------------------------------------------------------------
+
+    /// Every output in order, as separate entries would compute them one after the
+    /// other in the same record (each starts at depth 0 with no fatal error, as
+    /// `Compiled::run` starts them), storing each value and the count as it goes:
+    /// on a fatal error the host has the columns before it. What one column
+    /// computed (variables, input columns, library results) the next reuses.
+    fn outputs(&mut self, list: &'m [&'m Expr]) -> R<Value> {
+        let out = self.load_raw(self.st.ptr, OFF_OUT);
+        for (k, e) in list.iter().enumerate() {
+            let v = self.expr(e)?;
+            self.check_failed();
+            self.b.ins().store(mem(), v, out, k as i32 * 8);
+            let n = self.i64c(k as u64 + 1);
+            self.store_raw(n, OFF_DONE);
+        }
+        Ok(self.f64c(0.0))
+    }
 
     fn func_body(&mut self, def: DefId) -> R<Value> {
         self.st.compiled_defs.insert(def);
         let sym = self.st.module.def(def).sym.0;
         self.stack_check(sym);
         let d = self.add_depth(1);
-        self.depth_event(sym, d);
+        self.depth_event(sym, d, self.depth);
         let body = &self.st.module.def(def).body;
         let v = self.expr(body)?;
         self.add_depth(-1);
@@ -375,21 +468,20 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
 
     /// Whether the cache slot holds a value for the current record (or for good).
     fn fresh(&mut self, def: DefId, idx: u32) -> Value {
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
         let tick = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         if is_constant(self.st.module, def) {
             self.b.ins().icmp_imm_s(IntCC::Equal, tick, FOREVER as i64)
         } else {
-            let clock = self.load_raw(types::I64, OFF_CLOCK);
-            let same = self.b.ins().icmp(IntCC::Equal, tick, clock);
-            let set = self.b.ins().icmp_imm_s(IntCC::NotEqual, tick, 0);
-            self.b.ins().band(same, set)
+            // Never-computed slots hold 0, and the clock is never 0 (a context
+            // starts at 1 and wraps to 1).
+            self.b.ins().icmp(IntCC::Equal, tick, self.clock)
         }
     }
 
     fn cached_value(&mut self, idx: u32) -> Value {
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
         self.b.ins().load(types::F64, mem(), cache, off + OFF_VALUE)
     }
@@ -420,14 +512,17 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let tick = if is_constant(module, def) {
             self.i64c(FOREVER)
         } else {
-            self.load_raw(types::I64, OFF_CLOCK)
+            self.clock
         };
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
-        let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
-        // A fatal error in the body leaves the slot as it was: every abort from
-        // here on restores the stamp first.
+        // A fatal error in the body leaves the slot stale, as the interpreter's
+        // restored stamp does: every abort from here on stamps it "never computed"
+        // (0), stale at this clock and every later one as the stamp it had was
+        // (missing, it was an earlier clock, or 0; `:` slots missing hold 0) until
+        // the clock wraps after 2^64 records. No old stamp stays live across the
+        // body (it held a register through every call). The value is untouched.
         let outer_abort = self.abort.take();
         let restore = self.b.create_block();
         self.b.set_cold_block(restore);
@@ -435,7 +530,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = self.expr(&d.body)?;
         self.check_failed();
         self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
-        self.restore = Some((restore, cache, off, before));
+        self.restore = Some((restore, cache, off));
         self.abort = outer_abort;
         Ok(v)
     }
@@ -454,10 +549,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 if *n < 1 {
                     self.fail(E_ILLEGAL_CHANNEL, NO_SYM)
                 } else {
-                    let n = self.i32c(*n);
-                    let v = self.call_import_f64("radc_chan", &[self.raw, n]);
-                    self.check_failed();
-                    v
+                    self.channel(*n)
                 }
             }
             Node::Var(s) => self.variable(*s)?,
@@ -465,15 +557,17 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Node::Arg(n) => self.inline_argument(*n)?,
             Node::Neg(a) => {
                 let x = self.expr(a)?;
-                self.memo(Key::Op(OP_NEG, x, x), |lw| lw.b.ins().fneg(x))
+                let k = self.op_key(OP_NEG, x, x);
+                self.memo(k, |lw| lw.b.ins().fneg(x))
             }
             // Summed from 0 as calexpr.c `eadd` does: `-0 + -0` is 0.
             Node::Sum(v) => {
                 let mut acc = self.number(0.0);
                 for x in v {
                     let x = self.expr(x)?;
-                    acc = self.memo(Key::Op(OP_ADD, acc, x), |lw| {
-                        let r = lw.b.ins().fadd(acc, x);
+                    let k = self.op_key(OP_ADD, acc, x);
+                    acc = self.memo(k, |lw| {
+                        let r = lw.commuted(acc, x, |b, p, q| b.ins().fadd(p, q));
                         lw.nan_first(acc, x, r)
                     });
                 }
@@ -486,10 +580,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 for x in v {
                     let x = self.expr(x)?;
                     acc = Some(match acc {
-                        Some(a) => self.memo(Key::Op(OP_MUL, a, x), |lw| {
-                            let r = lw.b.ins().fmul(a, x);
-                            lw.nan_first(a, x, r)
-                        }),
+                        Some(a) => {
+                            let k = self.op_key(OP_MUL, a, x);
+                            self.memo(k, |lw| {
+                                let r = lw.commuted(a, x, |b, p, q| b.ins().fmul(p, q));
+                                lw.nan_first(a, x, r)
+                            })
+                        }
                         None => x,
                     });
                 }
@@ -501,7 +598,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Node::Sub(a, b) => {
                 let x = self.expr(a)?;
                 let y = self.expr(b)?;
-                self.memo(Key::Op(OP_SUB, x, y), |lw| {
+                let k = self.op_key(OP_SUB, x, y);
+                self.memo(k, |lw| {
                     let r = lw.b.ins().fsub(x, y);
                     lw.nan_first(x, y, r)
                 })
@@ -513,6 +611,29 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 Callee::Arg(n) => self.call_arg(*n, args)?,
             },
         })
+    }
+
+    /// Input column `n` (`n >= 1`): read once on every path (a fatal error aborts),
+    /// then reused, with the `errno` the read raised raised again, as a new read
+    /// would (`Input::column` gives the same for the same record).
+    fn channel(&mut self, n: u32) -> Value {
+        if let (Some(&v), Some(&e)) = (
+            self.known_args.get(&Key::Chan(n)),
+            self.known_args.get(&Key::ChanErrno(n)),
+        ) {
+            let errno = self.load_raw(types::I64, OFF_ERRNO);
+            let new = self.b.ins().select(e, e, errno);
+            self.store_raw(new, OFF_ERRNO);
+            return v;
+        }
+        let c = self.i32c(n);
+        let v = self.call_import_f64("radc_chan", &[self.raw, c]);
+        self.check_failed();
+        let e = self.load_raw(types::I64, OFF_CHAN_ERRNO);
+        self.know(Key::Chan(n), v);
+        self.know(Key::ChanErrno(n), e);
+        self.label(v, Key::Chan(n));
+        v
     }
 
     /// A number in an expression (one value per number in each region of code, so
@@ -561,7 +682,109 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let v = make(self);
         self.know(key, v);
+        self.label(v, key);
         v
+    }
+
+    fn intern(&mut self, key: Key) -> Vn {
+        if let Some(&n) = self.interned.get(&key) {
+            return n;
+        }
+        let n = self.next_vn;
+        self.next_vn += 1;
+        self.interned.insert(key, n);
+        n
+    }
+
+    /// The value number of `v`: its key's if it was given one, else its own.
+    fn vn(&mut self, v: Value) -> Vn {
+        if let Some(&n) = self.vns.get(&v) {
+            return n;
+        }
+        let n = self.intern(Key::Val(v));
+        self.vns.insert(v, n);
+        n
+    }
+
+    /// `v` is the value of `key` (a value keeps the first number it was given; a
+    /// key not yet numbered takes the value's).
+    fn label(&mut self, v: Value, key: Key) {
+        match self.vns.get(&v) {
+            Some(&n) => {
+                self.interned.entry(key).or_insert(n);
+            }
+            None => {
+                let n = self.intern(key);
+                self.vns.insert(v, n);
+            }
+        }
+    }
+
+    fn op_key(&mut self, kind: u8, x: Value, y: Value) -> Key {
+        Key::Op(kind, self.vn(x), self.vn(y))
+    }
+
+    /// A pure library function's result for `key`: the value already computed on
+    /// every path here; else, if some path may have computed it, a test of that
+    /// (the value, or a call); else a call, remembered for later calls.
+    fn pure_call(&mut self, key: Key, call: impl FnOnce(&mut Self) -> Value) -> Value {
+        if let Some(&v) = self.known_args.get(&key) {
+            return v;
+        }
+        let v = match self.lazy.get(&key).copied() {
+            Some((flag, val)) => {
+                let done = self.b.use_var(flag);
+                let (j, out) = self.join();
+                let have = self.b.create_block();
+                let compute = self.b.create_block();
+                self.b.ins().brif(done, have, &[], compute, &[]);
+                self.b.switch_to_block(have);
+                let v = self.b.use_var(val);
+                self.jump_with(j, v);
+                self.b.switch_to_block(compute);
+                let d = call(self);
+                let one = self.b.ins().iconst(types::I8, 1);
+                self.b.def_var(flag, one);
+                self.b.def_var(val, d);
+                self.jump_with(j, d);
+                self.b.switch_to_block(j);
+                out
+            }
+            None => {
+                let d = call(self);
+                if self.lazy.len() < MAX_LAZY {
+                    // Never defined on the paths that do not compute it, the flag
+                    // reads as 0 there (Cranelift's SSA construction zero-fills).
+                    let flag = self.b.declare_var(types::I8);
+                    let val = self.b.declare_var(types::F64);
+                    let one = self.b.ins().iconst(types::I8, 1);
+                    self.b.def_var(flag, one);
+                    self.b.def_var(val, d);
+                    self.lazy.insert(key, (flag, val));
+                }
+                d
+            }
+        };
+        self.know(key, v);
+        self.label(v, key);
+        v
+    }
+
+    /// `x op y` for a commutative IEEE operation (`+`, `*`: the same value either
+    /// way for operands that are not NaN, zeros' signs included), with a number that
+    /// is not NaN second, where the machine code can read it from memory; the NaN
+    /// cases are `nan_first`'s, which looks at the operands, not at the order.
+    fn commuted(
+        &mut self,
+        x: Value,
+        y: Value,
+        op: impl FnOnce(&mut FunctionBuilder<'b>, Value, Value) -> Value,
+    ) -> Value {
+        if self.not_nan(x) && !self.numbers.contains_key(&y) {
+            op(&mut self.b, y, x)
+        } else {
+            op(&mut self.b, x, y)
+        }
     }
 
     /// `Evaluator`'s `nan_first`: with a NaN operand, the first NaN operand itself
@@ -591,7 +814,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .is_some_and(|v| v != 0.0 && !v.is_nan())
         {
             let num = self.expr(a)?;
-            return Ok(self.memo(Key::Op(OP_DIV, num, den), |lw| lw.b.ins().fdiv(num, den)));
+            let k = self.op_key(OP_DIV, num, den);
+            return Ok(self.memo(k, |lw| lw.b.ins().fdiv(num, den)));
         }
         let zero = self.f64c(0.0);
         let is_zero = self.b.ins().fcmp(FloatCC::UnorderedOrEqual, den, zero);
@@ -630,14 +854,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let y = self.expr(b)?;
         let x = self.expr(a)?;
-        let d = match self.known_args.get(&Key::Pow(x, y)) {
-            Some(&d) => d,
-            None => {
-                let d = self.call_import_f64("radc_pow", &[x, y]);
-                self.know(Key::Pow(x, y), d);
-                d
-            }
-        };
+        let key = Key::Pow(self.vn(x), self.vn(y));
+        let d = self.pure_call(key, |lw| lw.call_import_f64("radc_pow", &[x, y]));
         // As for library functions: pure operands leave `errno` clear.
         if pure && self.st.policy != MathErrors::NonFinite {
             return Ok(d);
@@ -697,18 +915,24 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         if let Some(&v) = self.known_args.get(&Key::Var(def.0)) {
             return Ok(v);
         }
-        if !self.inlining_vars.contains(&def)
+        // Reads of a variable in its own body see the previous value: known there,
+        // but not numbered as the variable's value.
+        let own = self.inlining_vars.contains(&def) || self.job_var == Some(def);
+        if !own
             && self.inlining_vars.len() < INLINE_VAR_NESTING
-            && self.st.var_inlinable(def)
+            && let Some(size) = self.st.var_inline_size(def)
+            && self.st.charge_inline(size)
         {
             let v = self.inline_variable(def)?;
             self.know(Key::Var(def.0), v);
+            self.label(v, Key::Var(def.0));
             return Ok(v);
         }
         let (fid, idx) = self.st.var_fn(def)?;
         let f = self.func_ref(fid);
         if is_constant(module, def) && self.st.warn_nonconstant {
             // Every read warns: nothing to reuse.
+            self.sync_depth();
             let inst = self.b.ins().call(f, &[self.raw]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -719,6 +943,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
         let v = self.cached_variable(def, f, idx);
         self.know(Key::Var(def.0), v);
+        if !own {
+            self.label(v, Key::Var(def.0));
+        }
         Ok(v)
     }
 
@@ -738,10 +965,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
         let known = self.mark();
-        let tick = self.load_raw(types::I64, OFF_CLOCK);
-        let cache = self.load_raw(self.st.ptr, OFF_CACHE);
+        let tick = self.clock;
+        let cache = self.cache_ptr;
         let off = idx as i32 * CACHED_SIZE;
-        let before = self.b.ins().load(types::I64, mem(), cache, off + OFF_TICK);
         self.b.ins().store(mem(), tick, cache, off + OFF_TICK);
         let outer = self.abort_block();
         let restore = self.b.create_block();
@@ -756,7 +982,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = v?;
         self.abort = Some(outer);
         self.b.ins().store(mem(), v, cache, off + OFF_VALUE);
-        self.restores.push((restore, cache, off, before, outer));
+        self.restores.push((restore, cache, off, outer));
         self.rewind(known);
         self.jump_with(j, v);
         self.b.switch_to_block(j);
@@ -774,6 +1000,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let v = self.cached_value(idx);
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
+        self.sync_depth();
         let inst = self.b.ins().call(f, &[self.raw]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
@@ -823,6 +1050,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let parent = self.b.ins().load(self.st.ptr, mem(), block, OFF_PARENT);
         let sig = self.thunk_sig();
         let slot = self.b.ins().iadd_imm_s(block, i64::from(off));
+        self.sync_depth();
         let inst = self
             .b
             .ins()
@@ -884,6 +1112,10 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             self.rewind(known);
             self.jump_with(j, v);
             self.b.switch_to_block(j);
+            // Either way the argument's one value: computed now or before, it is
+            // the same expression in the same frame.
+            let n = self.vn(v);
+            self.vns.insert(out, n);
             out
         };
         let one = self.b.ins().iconst(types::I8, 1);
@@ -908,7 +1140,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     fn inline_call(&mut self, def: DefId, sym: u32, args: &'m [Expr]) -> R<Value> {
         self.st.compiled_defs.insert(def);
         let d = self.add_depth(1);
-        self.depth_event(sym, d);
+        self.depth_event(sym, d, self.depth);
         let zero = self.b.ins().iconst(types::I8, 0);
         let nothing = self.f64c(0.0);
         let mut vars = Vec::with_capacity(args.len());
@@ -935,7 +1167,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         Ok(v)
     }
 
-    /// Inlined code never builds argument blocks (see `State::inlinable`); this
+    /// Inlined code never builds argument blocks (see `State::inline_size`); this
     /// guards the rule.
     fn in_own_frame(&self) -> R<()> {
         if self.cur == 0 {
@@ -957,7 +1189,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .current_def(s)
             .filter(|&d| module.def(d).is_function())
         {
-            if self.st.inlinable(def) {
+            // Inside inlined code every call is inlined (see `State::inline_size`);
+            // the outermost inlined call was charged for them.
+            let inline = match self.st.inline_size(def) {
+                Some(_) if self.cur != 0 => true,
+                Some(size) => self.st.charge_inline(size),
+                None => false,
+            };
+            if inline {
                 let sym = module.def(def).sym.0;
                 return self.inline_call(def, sym, args);
             }
@@ -966,6 +1205,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             let fill = self.st.uses_fn_values(def);
             let block = self.build_block(args, CalleeName::Static(s), fill)?;
             let f = self.func_ref(fid);
+            self.sync_depth();
             let inst = self.b.ins().call(f, &[self.raw, block]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -1018,11 +1258,13 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.ins().brif(fp, direct, &[], via_host, &[]);
         self.b.switch_to_block(direct);
         let sig = self.uniform_sig();
+        self.sync_depth();
         let inst = self.b.ins().call_indirect(sig, fp, &[self.raw, new_block]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
         self.jump_with(j, v);
         self.b.switch_to_block(via_host);
+        self.sync_depth();
         let v = self.call_import_f64("radc_fnval", &[self.raw, new_block, code]);
         self.check_failed();
         self.jump_with(j, v);
@@ -1272,9 +1514,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// but its arguments are evaluated back at the caller's depth, so only the check
     /// is needed here.
     fn lib_enter(&mut self, sym: u32) {
+        if let Some(d) = self.depth {
+            let v = self.i64c(d + 1);
+            self.depth_event(sym, v, Some(d + 1));
+            return;
+        }
         let d = self.load_raw(types::I64, OFF_DEPTH);
         let d = self.b.ins().iadd_imm_s(d, 1);
-        self.depth_event(sym, d);
+        self.depth_event(sym, d, None);
     }
 
     fn lib_arg(&mut self, args: &'m [Expr], i: usize, sym: u32) -> R<Value> {
@@ -1372,7 +1619,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Builtin::Atan2 => {
                 let x = self.lib_arg(args, 1, sym)?;
                 let y = self.lib_arg(args, 0, sym)?;
-                self.call_import_f64("radc_atan2", &[y, x])
+                self.atan2(y, x)
             }
             // Exact operations (floor, ceil, sqrt) are the hardware instruction, the
             // others calls of the very functions the interpreter calls.
@@ -1421,7 +1668,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let d = if b == Builtin::Atan2 {
             let x = self.expr(&used[1])?;
             let y = self.expr(&used[0])?;
-            self.call_import_f64("radc_atan2", &[y, x])
+            self.atan2(y, x)
         } else {
             let x = self.expr(&used[0])?;
             self.unary(b, x)
@@ -1431,6 +1678,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         } else {
             d
         }))
+    }
+
+    fn atan2(&mut self, y: Value, x: Value) -> Value {
+        let key = Key::Atan2(self.vn(y), self.vn(x));
+        self.pure_call(key, |lw| lw.call_import_f64("radc_atan2", &[y, x]))
     }
 
     /// A one-argument C library function, inline where it is one instruction.
@@ -1448,16 +1700,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             }
             Builtin::Sqrt => self.b.ins().sqrt(x),
             other => {
-                let key = Key::Call(other, x);
-                if let Some(&d) = self.known_args.get(&key) {
-                    return d;
-                }
-                let d = match unary_symbol(other) {
-                    Some(name) => self.call_import_f64(name, &[x]),
-                    None => self.f64c(0.0),
-                };
-                self.know(key, d);
-                d
+                let key = Key::Call(other, self.vn(x));
+                self.pure_call(key, |lw| match unary_symbol(other) {
+                    Some(name) => lw.call_import_f64(name, &[x]),
+                    None => lw.f64c(0.0),
+                })
             }
         }
     }
@@ -1500,6 +1747,28 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let zero = self.fail(E_BAD_CALL, sym);
         self.jump_with(j, zero);
         self.b.switch_to_block(ok);
+        // Here 0 <= n < args.len().
+        if args.len() >= 4 {
+            let cases: Vec<ir::Block> = (0..args.len()).map(|_| self.b.create_block()).collect();
+            let calls: Vec<ir::BlockCall> = cases
+                .iter()
+                .map(|&c| self.b.func.dfg.block_call(c, &[]))
+                .collect();
+            let Some(&last) = calls.last() else {
+                return Ok(out);
+            };
+            let jt = self
+                .b
+                .create_jump_table(ir::JumpTableData::new(last, &calls));
+            let idx = self.b.ins().ireduce(types::I32, n);
+            self.b.ins().br_table(idx, jt);
+            for (k, &case) in cases.iter().enumerate() {
+                self.b.switch_to_block(case);
+                self.select_case(args, k, sym, j)?;
+            }
+            self.b.switch_to_block(j);
+            return Ok(out);
+        }
         for k in 0..args.len() {
             let case = self.b.create_block();
             if k + 1 < args.len() {

@@ -71,6 +71,8 @@ pub struct Jit {
     host_variables: Vec<String>,
     /// `(nodes, nesting)` in place of [`codegen::MAX_NODES`], [`codegen::MAX_NESTING`].
     limits: Option<(usize, usize)>,
+    /// In place of [`codegen::INLINE_BUDGET`].
+    inline_budget: Option<usize>,
 }
 
 /// A compiled entry point, from [`Compiled::entry`].
@@ -83,6 +85,8 @@ enum EntryCode {
     Value(*const u8),
     /// `(ctx, block) -> f64`: a function, called with host-supplied arguments.
     Function(*const u8),
+    /// `(ctx) -> f64` storing this many output columns at `Raw::out`.
+    Outputs(*const u8, usize),
 }
 
 enum EntryPlan<'m> {
@@ -115,6 +119,14 @@ impl Jit {
         self
     }
 
+    /// How many expression nodes inlining may add to the program, in place of the
+    /// default (1000): 0 inlines nothing. Results are the same whatever the budget;
+    /// speed and compile time are not.
+    pub fn with_inline_budget(mut self, nodes: usize) -> Self {
+        self.inline_budget = Some(nodes);
+        self
+    }
+
     /// Variables whose value the host sets per evaluation (rcalc's `recno` and
     /// `outno`), read from the context instead of their definitions; see
     /// [`Context::set_host`]. Names that resolve to no variable are ignored.
@@ -124,7 +136,10 @@ impl Jit {
     }
 
     /// Compile what `entries` reach. An entry is a variable or function name as
-    /// written, or `$N` for output column N.
+    /// written, `$N` for output column N, or `$*` for every output column in
+    /// ascending order, evaluated by one call of [`Compiled::eval_outputs`] (what
+    /// one column computes, the next reuses: variables, input columns, library
+    /// results).
     pub fn compile(&self, module: &Module, entries: &[&str]) -> Result<Compiled, JitError> {
         self.compile_with_expressions(module, entries, &[])
     }
@@ -152,10 +167,16 @@ impl Jit {
         entries: &[&str],
         exprs: &[&Expr],
     ) -> Result<Compiled, JitError> {
+        let all_outputs: Vec<&Expr> = module.outputs().values().map(|o| &o.body).collect();
         let mut plans = Vec::new();
         let mut roots = Vec::new();
         let mut syms = Vec::new();
         for &name in entries {
+            if name == "$*" {
+                roots.extend(all_outputs.iter().copied());
+                plans.push(EntryPlan::Body(EntryBody::Outputs(&all_outputs)));
+                continue;
+            }
             if let Some(col) = name.strip_prefix('$') {
                 let body = col
                     .parse::<u32>()
@@ -190,6 +211,7 @@ impl Jit {
         codegen::check_size(module, &roots, &defs, limits)?;
 
         let mut state = State::new(module, self.policy)?;
+        state.inline_budget = self.inline_budget.unwrap_or(codegen::INLINE_BUDGET);
         let mut host_names = Vec::new();
         for name in &self.host_variables {
             let def = module
@@ -201,7 +223,9 @@ impl Jit {
                 host_names.push(name.clone());
             }
         }
-        let mut ids: Vec<(FuncId, bool)> = Vec::new();
+        // Per entry: its function, and whether it takes arguments (`None`) or how
+        // many outputs it stores (`Some(n)`, 0 for a plain value).
+        let mut ids: Vec<(FuncId, Option<usize>)> = Vec::new();
         for plan in &plans {
             match plan {
                 EntryPlan::Body(what) => {
@@ -210,9 +234,13 @@ impl Jit {
                         .declare_anonymous_function(&state.sig_var)
                         .map_err(|e| JitError::Backend(e.to_string()))?;
                     state.queue.push(Job::Entry { id, what: *what });
-                    ids.push((id, false));
+                    let n = match what {
+                        EntryBody::Outputs(list) => list.len(),
+                        _ => 0,
+                    };
+                    ids.push((id, Some(n)));
                 }
-                EntryPlan::Function(d) => ids.push((state.user_fn(*d)?, true)),
+                EntryPlan::Function(d) => ids.push((state.user_fn(*d)?, None)),
             }
         }
         codegen::drain(&mut state)?;
@@ -222,12 +250,13 @@ impl Jit {
             .map_err(|e| JitError::Backend(e.to_string()))?;
         let codes = ids
             .iter()
-            .map(|&(id, function)| {
+            .zip(&plans)
+            .map(|(&(id, outputs), plan)| {
                 let p = state.jit.get_finalized_function(id);
-                if function {
-                    EntryCode::Function(p)
-                } else {
-                    EntryCode::Value(p)
+                match (outputs, plan) {
+                    (None, _) => EntryCode::Function(p),
+                    (Some(n), EntryPlan::Body(EntryBody::Outputs(_))) => EntryCode::Outputs(p, n),
+                    (Some(_), _) => EntryCode::Value(p),
                 }
             })
             .collect();
@@ -238,6 +267,7 @@ impl Jit {
         };
         Ok(Compiled {
             functions: state.compiled_defs.len(),
+            instructions: state.instructions,
             entry_names: entries
                 .iter()
                 .map(|e| e.to_string())
@@ -263,6 +293,7 @@ pub struct Compiled {
     cache_init: Vec<Cached>,
     host_names: Vec<String>,
     functions: usize,
+    instructions: usize,
     id: u64,
 }
 
@@ -274,6 +305,8 @@ pub struct Context {
     hosts: Vec<f64>,
     owner: u64,
     stack_budget: usize,
+    /// Where an outputs entry stores its columns.
+    outs: Vec<f64>,
 }
 
 impl Context {
@@ -303,6 +336,10 @@ impl Context {
     pub fn set_stack_budget(&mut self, bytes: usize) {
         self.stack_budget = bytes;
     }
+
+    pub fn stack_budget(&self) -> usize {
+        self.stack_budget
+    }
 }
 
 impl Compiled {
@@ -321,19 +358,35 @@ impl Compiled {
         self.functions
     }
 
+    /// Cranelift instructions generated for the whole program, before
+    /// optimisation: what compile time grows with, counted the same whatever the
+    /// machine's load.
+    pub fn instruction_count(&self) -> usize {
+        self.instructions
+    }
+
+    /// A new evaluation context, in its first record: `=` values computed now are
+    /// kept until [`Context::next_record`]. (An interpreter `Evaluator` keeps
+    /// nothing before its first `next_record`; the JIT's code relies on values not
+    /// changing within a record, so it has no such state. Drivers that start every
+    /// record with `next_record`, as `radc calc`'s do, see no difference.)
     pub fn context(&self) -> Context {
         Context {
             raw: Raw {
-                clock: 0,
+                // In its first record already (see `Compiled::context`).
+                clock: 1,
                 errno: layout::ERRNO_NONE,
                 failed: 0,
                 depth: 0,
-                depth_limit: 100,
+                depth_limit: layout::FIRST_DEPTH_REPORT,
                 stack_limit: 0,
                 cache: std::ptr::null_mut(),
                 hosts: std::ptr::null(),
+                chan_errno: 0,
+                out: std::ptr::null_mut(),
+                done: 0,
                 input: std::ptr::null_mut(),
-                next_report: 100,
+                next_report: layout::FIRST_DEPTH_REPORT,
                 warnings: Vec::new(),
                 error: None,
                 tables: Arc::clone(&self.tables),
@@ -342,7 +395,39 @@ impl Compiled {
             hosts: vec![0.0; self.host_names.len()],
             owner: self.id,
             stack_budget: DEFAULT_STACK_BUDGET,
+            outs: Vec::new(),
         }
+    }
+
+    /// Evaluate a `$*` entry: every output column in ascending order, appended to
+    /// `out`. On an error `out` holds the columns computed before it, as separate
+    /// [`Compiled::eval`] calls of each `$N` in turn would have given.
+    pub fn eval_outputs(
+        &self,
+        entry: Entry,
+        ctx: &mut Context,
+        input: &mut dyn Input,
+        out: &mut Vec<f64>,
+    ) -> Result<(), EvalError> {
+        let Some(&EntryCode::Outputs(p, n)) = self.codes.get(entry.0) else {
+            return Err(EvalError::NotAvailable(format!(
+                "entry #{} (not every output)",
+                entry.0
+            )));
+        };
+        if ctx.owner != self.id {
+            return Err(EvalError::NotAvailable(
+                "a context made for another compiled program".into(),
+            ));
+        }
+        ctx.outs.resize(n, 0.0);
+        ctx.raw.out = ctx.outs.as_mut_ptr();
+        ctx.raw.done = 0;
+        let result = self.run(EntryCode::Value(p), &[], ctx, input);
+        ctx.raw.out = std::ptr::null_mut();
+        let done = (ctx.raw.done as usize).min(n);
+        out.extend_from_slice(&ctx.outs[..done]);
+        result.map(|_| ())
     }
 
     /// The value of a variable or output entry (a function entry is called with no
@@ -370,8 +455,15 @@ impl Compiled {
         ctx: &mut Context,
         input: &mut dyn Input,
     ) -> Result<f64, EvalError> {
-        let Some(&code) = self.codes.get(entry.0) else {
-            return Err(EvalError::NotAvailable(format!("entry #{}", entry.0)));
+        let code = match self.codes.get(entry.0) {
+            Some(EntryCode::Outputs(..)) => {
+                return Err(EvalError::NotAvailable(format!(
+                    "entry #{} (every output: see eval_outputs)",
+                    entry.0
+                )));
+            }
+            Some(&code) => code,
+            None => return Err(EvalError::NotAvailable(format!("entry #{}", entry.0))),
         };
         if ctx.owner != self.id {
             return Err(EvalError::NotAvailable(
@@ -416,6 +508,8 @@ impl Compiled {
                     unsafe { std::mem::transmute(p) };
                 f(raw_ptr, words.as_mut_ptr() as *mut Block)
             }
+            // Called through `eval_outputs` as a value entry, never here.
+            EntryCode::Outputs(..) => 0.0,
         };
         let raw = &mut ctx.raw;
         raw.input = std::ptr::null_mut();

@@ -1,7 +1,8 @@
 //! rcalc's record loop over compiled code: the same driver as
 //! [`crate::interp::Interpreter`] (a new clock per record, `cond`, `recno`/`outno`,
 //! outputs in ascending column order, the columns computed before a fatal error),
-//! with each output column and `cond` compiled as an entry point.
+//! with `cond` and each `-o` field compiled as an entry point, and the output columns
+//! as one (`$*`, [`super::Compiled::eval_outputs`]).
 
 use super::{Compiled, Context, Entry, Jit, JitError};
 use crate::interp::{Error, Outputs, Record};
@@ -10,6 +11,7 @@ use radc_lang::cal::eval::{Input, MathErrors, NoInput, Warning};
 use radc_lang::cal::ir::Expr;
 use radc_lang::cal::syntax::DefKind;
 use std::fmt;
+use std::sync::Arc;
 
 /// Why a [`JitProgram`] could not start: an error rcalc itself reports, or a program
 /// the JIT declines (run it with the interpreter instead).
@@ -29,10 +31,14 @@ impl fmt::Display for StartError {
 }
 
 pub struct JitProgram {
-    compiled: Compiled,
+    /// Shared by the engines [`JitProgram::fork`] makes.
+    compiled: Arc<Compiled>,
     ctx: Context,
     cond: Option<Entry>,
-    outputs: Vec<(u32, Entry)>,
+    /// The output columns, ascending, and the entry computing them all.
+    columns: Vec<u32>,
+    outputs: Entry,
+    values: Vec<f64>,
     /// The expressions given to [`JitProgram::with_fields`], as entries.
     fields: Vec<Entry>,
     recno: Option<usize>,
@@ -66,7 +72,7 @@ impl JitProgram {
             return Err(StartError::Program(Error::ConstantCond));
         }
         let columns: Vec<u32> = module.outputs().keys().copied().collect();
-        let mut entries: Vec<String> = columns.iter().map(|c| format!("${c}")).collect();
+        let mut entries: Vec<String> = vec!["$*".into()];
         if cond.is_some() {
             entries.push("cond".into());
         }
@@ -88,10 +94,7 @@ impl JitProgram {
                 .entry(name)
                 .ok_or_else(|| StartError::Jit(JitError::UnknownEntry(name.to_string())))
         };
-        let outputs = columns
-            .iter()
-            .map(|c| Ok((*c, entry(&format!("${c}"))?)))
-            .collect::<Result<Vec<_>, StartError>>()?;
+        let outputs = entry("$*")?;
         let cond = match cond {
             Some(_) => Some(entry("cond")?),
             None => None,
@@ -100,18 +103,42 @@ impl JitProgram {
             .map(|k| entry(&format!("#{k}")))
             .collect::<Result<Vec<_>, StartError>>()?;
         let ctx = compiled.context();
+        let compiled = Arc::new(compiled);
         Ok(JitProgram {
             recno: compiled.host_index("recno"),
             outno: compiled.host_index("outno"),
             compiled,
             ctx,
             cond,
+            columns,
             outputs,
+            values: Vec::new(),
             fields,
             nrecs: 0,
             nout: 0,
             partial: Vec::new(),
         })
+    }
+
+    /// Another engine running the same compiled code (for another thread), with its
+    /// own context, and record counts from 0: no second compilation.
+    pub fn fork(&self) -> Self {
+        let mut ctx = self.compiled.context();
+        ctx.set_stack_budget(self.ctx.stack_budget());
+        JitProgram {
+            compiled: Arc::clone(&self.compiled),
+            ctx,
+            cond: self.cond,
+            columns: self.columns.clone(),
+            outputs: self.outputs,
+            values: Vec::new(),
+            fields: self.fields.clone(),
+            recno: self.recno,
+            outno: self.outno,
+            nrecs: 0,
+            nout: 0,
+            partial: Vec::new(),
+        }
     }
 
     /// Native stack the compiled code may use (see [`Context::set_stack_budget`]).
@@ -198,14 +225,18 @@ impl JitProgram {
     /// The `$N` columns of the record begun, appended to `out`; on an error `out`
     /// holds the columns computed before it.
     pub fn outputs_into(&mut self, input: &mut dyn Input, out: &mut Outputs) -> Result<(), Error> {
-        for &(chan, entry) in &self.outputs {
-            out.push((chan, self.compiled.eval(entry, &mut self.ctx, input)?));
-        }
-        Ok(())
+        let mut values = std::mem::take(&mut self.values);
+        values.clear();
+        let result = self
+            .compiled
+            .eval_outputs(self.outputs, &mut self.ctx, input, &mut values);
+        out.extend(self.columns.iter().copied().zip(values.iter().copied()));
+        self.values = values;
+        Ok(result?)
     }
 
     fn outputs(&mut self, input: &mut dyn Input) -> Result<Outputs, Error> {
-        let mut out = Vec::with_capacity(self.outputs.len());
+        let mut out = Vec::with_capacity(self.columns.len());
         match self.outputs_into(input, &mut out) {
             Ok(()) => Ok(out),
             Err(e) => {

@@ -390,6 +390,12 @@ fn execute(module: &Module, o: &Options) -> ExitCode {
     if !o.interp {
         let mut engines = Vec::with_capacity(threads);
         for _ in 0..threads {
+            // Compiled once: the other threads' engines share the code.
+            if let Some(first) = engines.first() {
+                let fork = JitProgram::fork(first);
+                engines.push(fork);
+                continue;
+            }
             match JitProgram::with_fields(module, MathErrors::default(), &fields, &named) {
                 Ok(mut jit) => {
                     jit.set_stack_budget(JIT_STACK_BUDGET);

@@ -1,0 +1,317 @@
+//! Compile cost stays bounded: the code the JIT generates for a program (Cranelift
+//! instructions, counted before optimisation, so independent of the machine's load)
+//! must not blow up with inlining. Programs whose derived variables are used in many
+//! branches once took seconds to compile (xyz_rgb.cal: 1.8 s in release, over 30 s in
+//! debug) before inlining got a per-program budget.
+
+use radc_jit::interp::{Interpreter, Record};
+use radc_jit::{Jit, JitProgram, RecordEngine};
+use radc_lang::FileId;
+use radc_lang::cal::eval::MathErrors;
+use radc_lang::cal::{Env, Module};
+use std::path::PathBuf;
+
+fn module(sources: &[&str], env: &Env) -> Module {
+    let mut m = Module::new(env);
+    for (i, s) in sources.iter().enumerate() {
+        let d = m.add_source(FileId(i as u32), s);
+        assert!(d.iter().all(|d| !d.is_error()), "{d:?}");
+    }
+    m.optimize();
+    m
+}
+
+/// Derived constants from a table, combined in a nine-way `select` (every case a
+/// separate branch), called three times by three functions: the shape of a colour
+/// space conversion. Every variable is small enough to inline on its own.
+const CHAINS: &str = "
+    tab(i) = select(i, 0.64, 0.33, 0.29, 0.60, 0.15, 0.06, 0.3127, 0.329);
+    xr = tab(1); yr = tab(2); xg = tab(3); yg = tab(4);
+    xb = tab(5); yb = tab(6); xw = tab(7); yw = tab(8);
+    d = xr*(yg - yb) + xg*(yb - yr) + xb*(yr - yg);
+    cr = (1/yw) * (xw*(yg - yb) - yw*(xg - xb) + xg*yb - xb*yg);
+    cg = (1/yw) * (xw*(yb - yr) - yw*(xb - xr) - xr*yb + xb*yr);
+    cb = (1/yw) * (xw*(yr - yg) - yw*(xr - xg) + xr*yg - xg*yr);
+    m(i, j) = select(i*3 + j + 1,
+        (yg - yb - xb*yg + yb*xg)/cr, (xb - xg - xb*yg + xg*yb)/cr, (xg*yb - xb*yg)/cr,
+        (yb - yr - yb*xr + yr*xb)/cg, (xr - xb - xr*yb + xb*yr)/cg, (xb*yr - xr*yb)/cg,
+        (yr - yg - yr*xg + yg*xr)/cb, (xg - xr - xg*yr + xr*yg)/cb, (xr*yg - xg*yr)/cb);
+    pos(x) : if(x, x, 0);
+    r(x, y, z) = pos(m(0,0)*x + m(0,1)*y + m(0,2)*z);
+    g(x, y, z) = pos(m(1,0)*x + m(1,1)*y + m(1,2)*z);
+    b(x, y, z) = pos(m(2,0)*x + m(2,1)*y + m(2,2)*z);
+    lum(x, y, z) = (d*x + cr*y + cb*z) / cg;
+    $1 = r($1, $2, $3); $2 = g($1, $2, $3); $3 = b($1, $2, $3); $4 = lum($1, $2, $3)";
+
+#[test]
+fn inlining_is_bounded_per_program() {
+    let m = module(&[CHAINS], &Env::rcalc());
+    let budgeted = Jit::new().compile(&m, &["$*"]).expect("compiles");
+    let unbounded = Jit::new()
+        .with_inline_budget(usize::MAX)
+        .compile(&m, &["$*"])
+        .expect("compiles");
+    let none = Jit::new()
+        .with_inline_budget(0)
+        .compile(&m, &["$*"])
+        .expect("compiles");
+    let (b, u, n) = (
+        budgeted.instruction_count(),
+        unbounded.instruction_count(),
+        none.instruction_count(),
+    );
+    eprintln!("instructions: budget {b}, no budget {u}, no inlining {n}");
+    // Without the budget the same program generates several times the code: this
+    // program is a real test of the bound.
+    assert!(u > 3 * b, "budget {b}, no budget {u}");
+    // With it, at most a few times what no inlining at all generates.
+    assert!(b < 5 * n, "budget {b}, no inlining {n}");
+    // And every setting computes the same.
+    let row = [0.3, 0.5, 0.2];
+    let mut want = None;
+    for c in [&budgeted, &unbounded, &none] {
+        let mut ctx = c.context();
+        ctx.next_record();
+        let mut out = Vec::new();
+        let all = c.entry("$*").expect("entry");
+        c.eval_outputs(all, &mut ctx, &mut Cols(&row), &mut out)
+            .expect("evaluates");
+        let bits: Vec<u64> = out.iter().map(|v| v.to_bits()).collect();
+        assert_eq!(*want.get_or_insert(bits.clone()), bits);
+    }
+}
+
+struct Cols<'a>(&'a [f64]);
+
+impl radc_lang::cal::eval::Input for Cols<'_> {
+    fn column(
+        &mut self,
+        n: u32,
+    ) -> Result<(f64, Option<radc_lang::cal::eval::Errno>), radc_lang::cal::eval::EvalError> {
+        Ok((self.0.get(n as usize - 1).copied().unwrap_or(0.0), None))
+    }
+    fn column_count(&mut self) -> Result<f64, radc_lang::cal::eval::EvalError> {
+        Ok(self.0.len() as f64)
+    }
+}
+
+/// The same through `radc calc`'s engine, against the interpreter.
+#[test]
+fn bounded_program_agrees_with_the_interpreter() {
+    let m = module(&[CHAINS], &Env::rcalc());
+    let mut jit = JitProgram::new(&m, MathErrors::ErrnoOnly).expect("compiles");
+    let mut interp = Interpreter::new(&m, MathErrors::ErrnoOnly).expect("starts");
+    for line in ["0.3 0.5 0.2\n", "1 1 1\n", "-2 0 1e300\n", "0 0 0\n"] {
+        let a = RecordEngine::record(&mut jit, &mut Record::new(line, ' '));
+        let b = RecordEngine::record(&mut interp, &mut Record::new(line, ' '));
+        let bits = |r: &Result<Option<Vec<(u32, f64)>>, radc_jit::Error>| {
+            format!(
+                "{:?}",
+                r.as_ref().map(|o| o
+                    .as_ref()
+                    .map(|v| v.iter().map(|(c, x)| (*c, x.to_bits())).collect::<Vec<_>>()))
+            )
+        };
+        assert_eq!(bits(&a), bits(&b), "{line}");
+    }
+}
+
+fn library_dir() -> Option<PathBuf> {
+    let lib = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.oracle/lib");
+    std::fs::read_dir(&lib)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|e| e.path().join("site-packages/pyradiance/lib"))
+        .find(|p| p.is_dir())
+}
+
+/// The program that took 1.8 s to compile: `radc calc -f xyz_rgb.cal -e
+/// '$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)'`.
+#[test]
+fn xyz_rgb_compiles_small() {
+    let Some(lib) = library_dir() else {
+        eprintln!("notice: no .oracle/ library: skipped");
+        return;
+    };
+    let Ok(text) = std::fs::read_to_string(lib.join("xyz_rgb.cal")) else {
+        eprintln!("notice: no xyz_rgb.cal: skipped");
+        return;
+    };
+    let m = module(
+        &[
+            &text,
+            "$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)",
+        ],
+        &Env::rcalc(),
+    );
+    let c = JitProgram::new(&m, MathErrors::ErrnoOnly);
+    assert!(c.is_ok());
+    let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
+    let n = c.instruction_count();
+    eprintln!("xyz_rgb.cal: {n} instructions");
+    // 11,207 with the default budget (1000 nodes); 34,325 at 3000 nodes, which
+    // took 84 ms to compile; 130,000 with no budget.
+    assert!(n < 16_000, "{n} instructions");
+}
+
+/// One program per library file, every name it defines an entry point, after
+/// `rayinit.cal` (as the bench's "library compile" group).
+fn library_programs(lib: &std::path::Path) -> Vec<(String, Module, Vec<String>)> {
+    let Ok(rayinit) = std::fs::read_to_string(lib.join("rayinit.cal")) else {
+        return Vec::new();
+    };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(lib)
+        .map(|d| d.filter_map(Result::ok).map(|e| e.path()).collect())
+        .unwrap_or_default();
+    files.retain(|f| f.extension().is_some_and(|x| x == "cal"));
+    files.sort();
+    let mut out = Vec::new();
+    for f in files {
+        let Ok(text) = std::fs::read_to_string(&f) else {
+            continue;
+        };
+        let mut m = Module::new(&Env::renderer());
+        m.add_source(FileId(0), &rayinit);
+        let d = m.add_source(FileId(1), &text);
+        if d.iter().any(|d| d.is_error()) {
+            continue;
+        }
+        m.optimize();
+        let names: Vec<String> = m
+            .symbols()
+            .iter()
+            .filter(|s| {
+                s.stack
+                    .last()
+                    .is_some_and(|&d| m.def(d).span.file == FileId(1))
+            })
+            .map(|s| s.name.clone())
+            .collect();
+        let name = f
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        out.push((name, m, names));
+    }
+    out
+}
+
+/// Every library file, every definition an entry point: none generates more than a
+/// bounded amount of code.
+#[test]
+fn every_library_file_compiles_small() {
+    let Some(lib) = library_dir() else {
+        eprintln!("notice: no .oracle/ library: skipped");
+        return;
+    };
+    let mut worst = (0, String::new());
+    for (name, m, names) in library_programs(&lib) {
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let Ok(c) = Jit::new().compile(&m, &names) else {
+            continue;
+        };
+        let n = c.instruction_count();
+        if n > worst.0 {
+            worst = (n, name);
+        }
+    }
+    eprintln!(
+        "largest library file: {} ({} instructions)",
+        worst.1, worst.0
+    );
+    // rayinit.cal, every definition: 15,582 with the default budget.
+    assert!(worst.0 < 24_000, "{} instructions for {}", worst.0, worst.1);
+}
+
+/// Not a test: compile time and code size of xyz_rgb.cal against the budget
+/// (`cargo test --release --test jit_compile_size -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn budget_survey() {
+    let Some(lib) = library_dir() else { return };
+    let Ok(text) = std::fs::read_to_string(lib.join("xyz_rgb.cal")) else {
+        return;
+    };
+    let m = module(
+        &[
+            &text,
+            "$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)",
+        ],
+        &Env::rcalc(),
+    );
+    let mut times = Vec::new();
+    for (name, m, names) in library_programs(&lib) {
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let mut best = std::time::Duration::MAX;
+        for _ in 0..3 {
+            let t = std::time::Instant::now();
+            let _ = Jit::new().compile(&m, &names);
+            best = best.min(t.elapsed());
+        }
+        times.push((best, name));
+    }
+    times.sort();
+    let k = times.len();
+    if k > 0 {
+        eprintln!(
+            "library files: {k}, median {:?}, 90th percentile {:?}, largest {:?}",
+            times[k / 2].0,
+            times[k * 9 / 10].0,
+            &times[k.saturating_sub(5)..]
+        );
+    }
+    for budget in [0, 250, 500, 1000, 2000, 3000, 6000] {
+        let t = std::time::Instant::now();
+        let c = Jit::new()
+            .with_inline_budget(budget)
+            .compile(&m, &["$*"])
+            .expect("compiles");
+        eprintln!(
+            "budget {budget}: {} instructions, {:?}",
+            c.instruction_count(),
+            t.elapsed()
+        );
+    }
+}
+
+/// Not a test: a loop to profile (`valgrind --tool=callgrind` on the test binary
+/// with `--ignored profile_loop`), `RADC_PROFILE` = `sun` or `cielab`.
+#[test]
+#[ignore]
+fn profile_loop() {
+    let Some(lib) = library_dir() else { return };
+    let which = std::env::var("RADC_PROFILE").unwrap_or_else(|_| "sun".into());
+    let (file, expr) = match which.as_str() {
+        "cielab" => (
+            "cielab.cal",
+            "$1=Ls($2);$2=as($1,$2,$3);$3=bs($1,$2,$3);$4=Cs($1,$2,$3);$5=bfunc($1)",
+        ),
+        _ => (
+            "sun.cal",
+            "MONTH=$1;DAY=$2;TIME=$3;$1=SALT;$2=SAZI;$3=HALFDAY",
+        ),
+    };
+    let Ok(text) = std::fs::read_to_string(lib.join(file)) else {
+        return;
+    };
+    let m = module(&[&text, expr], &Env::rcalc());
+    let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
+    let all = c.entry("$*").expect("entry");
+    let mut ctx = c.context();
+    let mut out = Vec::new();
+    let mut sum = 0.0;
+    for i in 0..200_000 {
+        let t = (i % 64) as f64 / 64.0;
+        let row = if which == "cielab" {
+            [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
+        } else {
+            [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
+        };
+        ctx.next_record();
+        out.clear();
+        c.eval_outputs(all, &mut ctx, &mut Cols(&row), &mut out)
+            .expect("evaluates");
+        sum += out[0];
+    }
+    eprintln!("{sum}");
+}
