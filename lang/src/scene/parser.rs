@@ -13,11 +13,12 @@ use chumsky::prelude::*;
 use chumsky::util::MaybeRef;
 
 use super::lexer::{Lexer, Token, TokenKind, unquote};
-use super::reader::{Stopped, read};
+use super::reader::{Outcome, read};
 use super::syntax::{Alias, ArgGroup, Command, Item, Primitive, Real, SceneFile, Word};
 use crate::diagnostic::{self as codes, Code, Diagnostic};
 use crate::schema;
 use crate::source::{FileId, Span};
+use std::ops::ControlFlow;
 
 /// What went wrong, before it becomes a [`Diagnostic`] (which needs the file id).
 #[derive(Clone, Debug, PartialEq)]
@@ -99,19 +100,37 @@ pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
 /// first one it cannot read, this recovering parser takes over for the rest of the
 /// file, so the result is the same as parsing it all with recovery.
 pub fn parse_each(file: FileId, text: &str, visit: &mut dyn FnMut(&Item)) -> Vec<Diagnostic> {
+    parse_each_from(file, text, visit).0
+}
+
+/// [`parse_each`], also saying where the recovering parser took over (the end of the
+/// last statement the fast reader read), if it did.
+pub(super) fn parse_each_from(
+    file: FileId,
+    text: &str,
+    visit: &mut dyn FnMut(&Item),
+) -> (Vec<Diagnostic>, Option<usize>) {
     let mut diagnostics = Vec::new();
-    let Err(Stopped(resume)) = read(file, text, visit, &mut diagnostics) else {
-        return diagnostics;
+    let mut each = |item: &Item| {
+        visit(item);
+        ControlFlow::Continue(())
+    };
+    let Outcome::Stopped(resume) = read(file, text, 0, &mut each, &mut diagnostics) else {
+        return (diagnostics, None);
     };
     let (items, more) = parse_recovering(file, text, resume);
     items.iter().for_each(visit);
     diagnostics.extend(more);
-    diagnostics
+    (diagnostics, Some(resume))
 }
 
 /// The recovering parser on the statements from byte `start` (a statement boundary)
 /// to the end, with spans in the whole text.
-fn parse_recovering(file: FileId, text: &str, start: usize) -> (Vec<Item>, Vec<Diagnostic>) {
+pub(super) fn parse_recovering(
+    file: FileId,
+    text: &str,
+    start: usize,
+) -> (Vec<Item>, Vec<Diagnostic>) {
     let tokens: Vec<(Token<'_>, SimpleSpan)> = Lexer::starting_at(text, start)
         .map(|(t, r)| (t, SimpleSpan::from(r)))
         .collect();
