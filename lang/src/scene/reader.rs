@@ -35,16 +35,16 @@ pub(super) enum Outcome {
 }
 
 /// Reads statements from byte `start` of `text` (a statement boundary: the start or
-/// the end of a statement), handing each to `visit` and adding the diagnostics of the
-/// statements it reads to `diags` (before `visit` sees the statement), until the end,
-/// the first statement it cannot read, or `visit` breaks.
+/// the end of a statement), handing each to `visit` with its diagnostics (which
+/// `visit` may take), until the end, the first statement it cannot read, or `visit`
+/// breaks.
 pub(super) fn read(
     file: FileId,
     text: &str,
     start: usize,
-    visit: &mut dyn FnMut(&Item) -> ControlFlow<()>,
-    diags: &mut Vec<Diagnostic>,
+    visit: &mut dyn FnMut(&Item, &mut Vec<Diagnostic>) -> ControlFlow<()>,
 ) -> Outcome {
+    let mut diags = Vec::new();
     let mut reader = Reader {
         file,
         lexer: Lexer::starting_at(text, start),
@@ -59,16 +59,20 @@ pub(super) fn read(
             return Outcome::End;
         };
         let span = Span::new(file, range.clone());
+        diags.clear();
         let flow = match first.kind {
-            TokenKind::Comment => visit(&Item::Comment(span)),
-            TokenKind::Command => visit(&Item::Command(Command {
-                text: command_text(first.text),
-                span,
-            })),
+            TokenKind::Comment => visit(&Item::Comment(span), &mut diags),
+            TokenKind::Command => visit(
+                &Item::Command(Command {
+                    text: command_text(first.text),
+                    span,
+                }),
+                &mut diags,
+            ),
             TokenKind::Word | TokenKind::Unterminated => {
                 reader.lexer = statement_lexer.clone();
                 if let Some(alias) = reader.alias() {
-                    visit(&Item::Alias(alias))
+                    visit(&Item::Alias(alias), &mut diags)
                 } else {
                     reader.lexer = statement_lexer;
                     let mut p = prim.take().unwrap_or_else(|| empty_primitive(file));
@@ -83,7 +87,7 @@ pub(super) fn read(
                             .map(|e| to_diagnostic(file, text, e)),
                     );
                     let item = Item::Primitive(p);
-                    let flow = visit(&item);
+                    let flow = visit(&item, &mut diags);
                     if let Item::Primitive(p) = item {
                         prim = Some(p);
                     }

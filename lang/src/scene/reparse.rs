@@ -3,23 +3,21 @@
 //!
 //! Where a statement ends depends on the counts before it, so an edit can move every
 //! later statement boundary; in practice the statements realign right after the
-//! edit. The fast reader (`reader.rs`) reads a clean statement from its first token to
-//! its last, looking at one more byte (the blank or the end of the text that ends the
-//! last word), and nothing else: so a statement the fast reader read and that ends
-//! before the edit is unchanged, and once a statement read anew ends in the unchanged
-//! text after the edit exactly where an old statement (shifted) ended, everything
-//! after it is the old parse, shifted. The statements from the first one the fast
-//! reader could not read are the recovering parser's, which may look arbitrarily far
-//! ahead: they are kept only whole, when the reading realigns before them; an edit
-//! among them re-parses from there to the end, as a full parse does.
+//! edit. Each statement's reading depends on the text from where it starts up to some
+//! byte: for the fast reader (`reader.rs`) the byte after its last word (the blank or
+//! the end of the text that ends it), for the recovering parser the end of the
+//! window of tokens it was handed (`parser::recover_statement`). So the statements
+//! whose reading looked only at text before the edit are unchanged; reading starts
+//! again after the last of them, and once a statement read anew ends in the
+//! unchanged text after the edit exactly where an old statement (shifted) ended,
+//! every statement after it is the old one, shifted.
 //!
 //! The result is exactly [`ParsedScene::new`] of the new text (tested on random edits
-//! below and in `db`).
+//! in `db`).
 
 use std::ops::ControlFlow;
 
-use super::parser::{parse_each_from, parse_recovering};
-use super::reader::{Outcome, read};
+use super::parser::read_statements;
 use super::syntax::{Item, SceneFile};
 use crate::diagnostic::Diagnostic;
 use crate::source::{self, FileId, Span};
@@ -39,34 +37,70 @@ pub struct ParsedScene {
     pub syntax: SceneFile,
     /// Sorted by span; a NUL byte's warning (as `radc check` reads files) included.
     pub diagnostics: Vec<Diagnostic>,
-    /// Where the recovering parser took over from the fast reader (the end of the
-    /// last statement the fast reader read), if it did: items from here on are its.
-    recovered_from: Option<u32>,
+    /// For each diagnostic, where the statement that reported it starts.
+    owners: Vec<u32>,
+    /// The statements the recovering parser read: where each starts and the byte
+    /// before which it looked at the text (`u32::MAX`: it saw the end of the text).
+    recovered: Vec<(u32, u32)>,
     /// Whether the text holds a NUL byte (then every edit parses the whole file:
     /// the warning points at the first NUL of the file).
     has_nul: bool,
+}
+
+/// Statements read, as [`read_statements`] hands them over.
+#[derive(Default)]
+struct Reading {
+    items: Vec<Item>,
+    diagnostics: Vec<(Diagnostic, u32)>,
+    recovered: Vec<(u32, u32)>,
+}
+
+impl Reading {
+    fn add(&mut self, item: &Item, diags: &mut Vec<Diagnostic>, looked_to: Option<usize>) {
+        let start = item.span().start;
+        self.diagnostics.extend(diags.drain(..).map(|d| (d, start)));
+        if let Some(to) = looked_to {
+            self.recovered.push((start, clamp_u32(to)));
+        }
+        self.items.push(item.clone());
+    }
+}
+
+/// Sorted by span as a whole parse sorts them: a stable sort of the order they were
+/// reported in, which is statement order.
+fn sort(diags: &mut [(Diagnostic, u32)]) {
+    diags.sort_by_key(|(d, owner)| (d.span.start, d.span.end, *owner));
 }
 
 impl ParsedScene {
     /// Parses the whole text. A NUL byte is decoded and reported exactly as
     /// `radc check` reports it when reading from disk.
     pub fn new(file: FileId, text: &str) -> Self {
-        let mut items = Vec::new();
-        let mut push = |item: &Item| items.push(item.clone());
+        let mut reading = Reading::default();
         let has_nul = text.as_bytes().contains(&0);
-        let (mut diagnostics, recovered_from) = if has_nul {
-            let (clean, mut diags) = source::decode(file, text.as_bytes());
-            let (more, resume) = parse_each_from(file, &clean, &mut push);
-            diags.extend(more);
-            (diags, resume)
-        } else {
-            parse_each_from(file, text, &mut push)
+        let mut add = |item: &Item, diags: &mut Vec<Diagnostic>, to| {
+            reading.add(item, diags, to);
+            ControlFlow::Continue(())
         };
-        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        let mut first = Vec::new();
+        if has_nul {
+            let (clean, diags) = source::decode(file, text.as_bytes());
+            first = diags;
+            let _ = read_statements(file, &clean, 0, &mut add);
+        } else {
+            let _ = read_statements(file, text, 0, &mut add);
+        }
+        let mut diags: Vec<(Diagnostic, u32)> = first.into_iter().map(|d| (d, 0)).collect();
+        diags.append(&mut reading.diagnostics);
+        sort(&mut diags);
+        let (diagnostics, owners) = diags.into_iter().unzip();
         ParsedScene {
-            syntax: SceneFile { items },
+            syntax: SceneFile {
+                items: reading.items,
+            },
             diagnostics,
-            recovered_from: recovered_from.map(clamp_u32),
+            owners,
+            recovered: reading.recovered,
             has_nul,
         }
     }
@@ -84,7 +118,7 @@ impl ParsedScene {
     ) -> Reparse {
         let valid = start <= old_end && start <= new_end && new_end <= text.len();
         let inserted_nul = valid && text.as_bytes()[start..new_end].contains(&0);
-        if !valid || self.has_nul || inserted_nul || text.len() >= u32::MAX as usize {
+        if !valid || self.has_nul || inserted_nul || text.len() >= u32::MAX as usize - 1 {
             *self = ParsedScene::new(file, text);
             return Reparse {
                 statements: self.syntax.items.len(),
@@ -93,92 +127,87 @@ impl ParsedScene {
         }
         let delta = new_end as i64 - old_end as i64;
         let items = &self.syntax.items;
-        // Items before this index are the fast reader's.
-        let fast = match self.recovered_from {
-            Some(at) => items.partition_point(|i| i.span().start < at),
-            None => items.len(),
-        };
-        // Fast statements whose last byte looked at (the one after them) is before
-        // the edit are unchanged.
-        let keep = items[..fast].partition_point(|i| (i.span().end as usize) < start);
+        // Statements whose reading looked only before the edit are unchanged: those
+        // ending before it, up to the first recovered one that looked further.
+        let mut keep = items.partition_point(|i| (i.span().end as usize) < start);
+        let kept_end = keep.checked_sub(1).map_or(0, |k| items[k].span().start);
+        let looked_past = self
+            .recovered
+            .iter()
+            .take_while(|(at, _)| *at <= kept_end)
+            .find(|(_, to)| *to as usize > start);
+        if let Some(&(at, _)) = looked_past {
+            keep = keep.min(items.partition_point(|i| i.span().start < at));
+        }
         let from = keep
             .checked_sub(1)
             .map_or(0, |k| items[k].span().end as usize);
 
-        let mut window = Vec::new();
-        let mut window_diags = Vec::new();
-        // The old fast statement whose end (shifted) a new statement ended at.
+        let mut reading = Reading::default();
+        // The old statement whose end (shifted) a new statement ended at.
         let mut realigned = None;
         let mut next_old = keep;
-        let mut visit = |item: &Item| {
-            window.push(item.clone());
+        let mut visit = |item: &Item, diags: &mut Vec<Diagnostic>, looked_to: Option<usize>| {
+            reading.add(item, diags, looked_to);
             let end = item.span().end as usize;
             if end < new_end {
                 return ControlFlow::Continue(());
             }
             let old = (end as i64 - delta) as usize;
-            while next_old < fast && (items[next_old].span().end as usize) < old {
+            while next_old < items.len() && (items[next_old].span().end as usize) < old {
                 next_old += 1;
             }
-            if next_old < fast && items[next_old].span().end as usize == old {
+            if next_old < items.len() && items[next_old].span().end as usize == old && old > 0 {
                 realigned = Some(next_old);
                 return ControlFlow::Break(());
             }
             ControlFlow::Continue(())
         };
-        let outcome = read(file, text, from, &mut visit, &mut window_diags);
-        let mut recovered_from = None;
-        let tail = match outcome {
-            Outcome::Halted => realigned,
-            Outcome::End => None,
-            Outcome::Stopped(resume) => {
-                // A statement the fast reader cannot read: from there the recovering
-                // parser reads to the end, as in a full parse. (Had the statement
-                // before it ended where the old one did, the reading would have
-                // realigned there.)
-                let (more_items, more_diags) = parse_recovering(file, text, resume);
-                window.extend(more_items);
-                window_diags.extend(more_diags);
-                recovered_from = Some(clamp_u32(resume));
-                None
-            }
-        };
-        let read_again = window.len();
-        window_diags.sort_by_key(|d| (d.span.start, d.span.end));
+        let _ = read_statements(file, text, from, &mut visit);
+        let read_again = reading.items.len();
 
-        // Diagnostics of the kept statements start before `from`; those of the reused
-        // ones after the end of the statement realigned at.
-        let diags = &mut self.diagnostics;
-        let kept = diags.partition_point(|d| (d.span.start as usize) < from);
-        let reused = match tail {
-            Some(k) => {
-                let end = items[k].span().end;
-                diags.partition_point(|d| d.span.start <= end)
-            }
-            None => diags.len(),
-        };
-        let mut suffix = diags.split_off(reused);
-        diags.truncate(kept);
-        for d in &mut suffix {
-            shift_diagnostic(d, file, delta);
-        }
-        diags.extend(window_diags);
-        diags.extend(suffix);
+        // The old statements from `keep` to the realigned one are replaced; those
+        // after it are kept, shifted.
+        let replaced_end = realigned.map_or(items.len(), |k| k + 1);
+        let old_from = items.get(keep).map_or(u32::MAX, |i| i.span().start);
+        let old_after = realigned.map_or(u32::MAX, |k| items[k].span().end);
+        let shift_u32 = |v: u32| (i64::from(v) + delta) as u32;
+
+        let mut diags: Vec<(Diagnostic, u32)> = std::mem::take(&mut self.diagnostics)
+            .into_iter()
+            .zip(std::mem::take(&mut self.owners))
+            .filter(|(_, owner)| *owner < old_from || *owner > old_after)
+            .map(|(mut d, owner)| {
+                if owner > old_after {
+                    shift_diagnostic(&mut d, file, delta);
+                    (d, shift_u32(owner))
+                } else {
+                    (d, owner)
+                }
+            })
+            .collect();
+        diags.append(&mut reading.diagnostics);
+        sort(&mut diags);
+        (self.diagnostics, self.owners) = diags.into_iter().unzip();
+
+        let mut recovered: Vec<(u32, u32)> = Vec::with_capacity(self.recovered.len());
+        recovered.extend(self.recovered.iter().filter(|(at, _)| *at < old_from));
+        recovered.append(&mut reading.recovered);
+        recovered.extend(self.recovered.iter().filter(|(at, _)| *at > old_after).map(
+            |&(at, to)| {
+                let to = if to == u32::MAX { to } else { shift_u32(to) };
+                (shift_u32(at), to)
+            },
+        ));
+        self.recovered = recovered;
 
         let items = &mut self.syntax.items;
-        let replaced_end = tail.map_or(items.len(), |k| k + 1);
-        if tail.is_some() {
-            if delta != 0 {
-                for item in &mut items[replaced_end..] {
-                    shift_item(item, delta);
-                }
+        if delta != 0 {
+            for item in &mut items[replaced_end..] {
+                shift_item(item, delta);
             }
-            recovered_from = self
-                .recovered_from
-                .map(|at| clamp_u32((i64::from(at) + delta) as usize));
         }
-        items.splice(keep..replaced_end, window);
-        self.recovered_from = recovered_from;
+        items.splice(keep..replaced_end, reading.items);
         Reparse {
             statements: read_again,
             whole: false,
