@@ -138,6 +138,7 @@ def run_edits(label, count, edit):
     """Applies `count` edits, `edit(k)` giving (column, old length, new text) on the
     radius line; returns the wall times and the server CPU per edit."""
     times = []
+    counts = set()
     cpu_before = cpu()
     for k in range(1, count + 1):
         col, old_len, new = edit(k)
@@ -154,10 +155,11 @@ def run_edits(label, count, edit):
             "textDocument": {"uri": scene_uri, "version": version[0]}, "contentChanges": [change]}})
         published = wait(diagnostics_of(scene_uri, version[0]))
         times.append(ms(time.perf_counter() - t))
+        counts.add(len(published["params"]["diagnostics"]))
     per_edit = ms(cpu() - cpu_before) / count
     print(f"edit -> diagnostics, {count} edits ({label}): median {statistics.median(times):.1f} ms, "
           f"worst {max(times):.1f} ms; server CPU {per_edit:.1f} ms per edit; "
-          f"{len(published['params']['diagnostics'])} diagnostics after the last")
+          f"diagnostics published: {sorted(counts)}")
     return published
 
 
@@ -171,6 +173,7 @@ run_edits("a digit typed, then erased", edits,
 # of the file, as a whole parse would), then mended.
 run_edits("a letter typed into the number, then erased", edits,
           lambda k: (column + 1, 0, "x") if k % 2 else (column + 1, 1, ""))
+last = request("radc/stats", None)
 
 
 def timed(method, params):
@@ -195,7 +198,6 @@ mem = memory()
 print(f"server memory: {mem.get('VmRSS', 0):.0f} MB resident, peak {mem.get('VmHWM', 0):.0f} MB")
 scene_path = os.path.realpath(os.path.join(folder, "scene.rad"))
 cal_path = os.path.realpath(os.path.join(folder, "f.cal"))
-last = request("radc/stats", None)
 print("radc/stats after the first edits:", json.dumps(after))
 for name, path in (("scene.rad", scene_path), ("f.cal", cal_path)):
     def stat(stats, key):

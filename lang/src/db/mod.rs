@@ -95,7 +95,13 @@ impl FileContents {
     ) -> Option<Reparse> {
         self.lines.edit(&self.text, start, old_end, new_end);
         let parsed = self.scene.get_mut()?;
-        Some(parsed.edit(file, &self.text, start, old_end, new_end))
+        let text = &self.text;
+        let edited = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            parsed.edit(file, text, start, old_end, new_end)
+        }));
+        // A bug in the reparse must not leave a wrong tree behind: forget it, and
+        // the next query parses the whole text.
+        edited.map_err(|_| self.scene = OnceLock::new()).ok()
     }
 }
 

@@ -441,6 +441,7 @@ mod edit_tests {
 
     #[test]
     fn random_edits_match_reading_the_text_afresh() {
+        let (mut whole, mut parses) = (0, 0);
         for seed in 1..=30u64 {
             let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ seed.wrapping_mul(0x2545_f491));
             let mut db = Database::new(Arc::new(Generator));
@@ -466,11 +467,13 @@ mod edit_tests {
                     assert_eq!(check_scene(&db, file), &fresh_check(&text), "{context}");
                 }
             }
-            // Most edits re-read a few statements, not the whole file.
             let stats = db.parse_stats()[0].1;
-            eprintln!("seed {seed}: {stats:?}");
-            assert!(stats.whole < stats.parses / 2, "{stats:?}");
+            whole += stats.whole;
+            parses += stats.parses;
         }
+        // Most edits re-read a few statements, not the whole file (a NUL byte, while
+        // it lasts, makes every parse a whole one).
+        assert!(whole < parses / 4, "{whole} whole parses of {parses}");
     }
 
     /// A scene of many statements: an edit inside one re-reads that one alone, and
