@@ -425,7 +425,7 @@ mod edit_tests {
                 PIECES[rng.below(PIECES.len())].into(),
             ),
             // Insert a piece, or replace a character with one.
-            5 | 6 | 7 => (at..at, piece(rng).into()),
+            5..=7 => (at..at, piece(rng).into()),
             _ => {
                 let end = text[at..].chars().next().map_or(at, |c| at + c.len_utf8());
                 (at..end, piece(rng).into())

@@ -110,6 +110,11 @@ pub fn parse_each(file: FileId, text: &str, visit: &mut dyn FnMut(&Item)) -> Vec
     diagnostics
 }
 
+/// What [`read_statements`] hands each statement to: the item, its diagnostics, and
+/// for a recovered statement the byte before which its reading looked.
+pub(super) type StatementVisitor<'a> =
+    dyn FnMut(&Item, &mut Vec<Diagnostic>, Option<usize>) -> ControlFlow<()> + 'a;
+
 /// Reads statements from byte `start` (a statement boundary), handing each to
 /// `visit` with its diagnostics (which `visit` may take) and, for a statement the
 /// recovering parser read, the byte before which it looked at the text (see
@@ -119,7 +124,7 @@ pub(super) fn read_statements(
     file: FileId,
     text: &str,
     mut start: usize,
-    visit: &mut dyn FnMut(&Item, &mut Vec<Diagnostic>, Option<usize>) -> ControlFlow<()>,
+    visit: &mut StatementVisitor<'_>,
 ) -> ControlFlow<()> {
     loop {
         match read(file, text, start, &mut |item, diags| {
