@@ -476,6 +476,98 @@ mod edit_tests {
         assert!(whole < parses / 4, "{whole} whole parses of {parses}");
     }
 
+    /// The edits the random ones may miss, each checked against reading afresh.
+    #[test]
+    fn named_edge_cases_match_reading_afresh() {
+        type Edit = fn(&str) -> (std::ops::Range<usize>, &'static str);
+        let cases: &[(&str, Edit)] = &[
+            // Two statements merged: the newline between the sphere and the command.
+            ("merge", |t| {
+                let at = t.find("0 1\n!gen blue").expect("merge") + 3;
+                (at..at + 1, " ")
+            }),
+            // One statement split in two by a new header inside its arguments.
+            ("split", |t| {
+                let at = t.find(" 1 0 0\n 1 1 0").expect("split");
+                (
+                    at..at,
+                    "\nvoid plastic cut\n0\n0\n5 1 1 1 0 0\nblue polygon f2 0 0 6",
+                )
+            }),
+            // Inside a multi-line statement: one real of the polygon dropped.
+            ("multi-line", |t| {
+                let at = t.find(" 1 1 0\n").expect("real");
+                (at..at + 2, "")
+            }),
+            // The command line edited: its expansion changes (and breaks).
+            ("command", |t| {
+                let at = t.find("!gen blue").expect("command") + 4;
+                (at..at + 5, "")
+            }),
+            // A continued command line loses its backslash.
+            ("continuation", |t| {
+                let at = t.find("green \\").expect("continuation") + 6;
+                (at..at + 1, "")
+            }),
+            // A comment marker and a quote typed at the start of lines.
+            ("comment", |t| {
+                let at = t.find("red sphere ball").expect("sphere");
+                (at..at, "#")
+            }),
+            ("quote", |t| {
+                let at = t.find("red cone").expect("cone");
+                (at..at, "\"")
+            }),
+            // CRLF lines: the carriage return deleted, then a CRLF line added.
+            ("crlf", |t| {
+                let at = t.find("red\r\n").expect("crlf") + 3;
+                (at..at + 1, "")
+            }),
+            ("crlf line", |t| {
+                let at = t.find("rouge ring").expect("ring");
+                (at..at, "void plastic crlf\r\n0\r\n0\r\n5 1 1 1 0 0\r\n")
+            }),
+            // Multibyte characters: in a comment, and as a name.
+            ("utf-8", |t| {
+                let at = t.find("é").expect("é");
+                (at..at + "é".len(), "ü😀")
+            }),
+            ("utf-8 name", |t| {
+                let at = t.find("sphere ball").expect("ball") + 7;
+                (at..at + 4, "bälle")
+            }),
+            // At the end of the file: a digit appended to the last word, then a
+            // half-written primitive.
+            ("end", |t| (t.len() - 1..t.len(), "5")),
+            ("end primitive", |t| {
+                (t.len()..t.len(), "\nred sphere late\n0\n0\n4 1")
+            }),
+        ];
+        for (name, edit) in cases {
+            let mut db = Database::new(Arc::new(Generator));
+            let file = db.add_file("/x/a.rad", START);
+            check_scene(&db, file);
+            let mut text = START.to_string();
+            let (range, new) = edit(&text);
+            assert!(text.is_char_boundary(range.start) && text.is_char_boundary(range.end));
+            db.edit(file, range.clone(), new);
+            text.replace_range(range, new);
+            let fresh = ParsedScene::new(file.id(&db), &text);
+            assert_eq!(parse_scene(&db, file), &fresh, "{name}: {text:?}");
+            assert_eq!(line_index(&db, file), &LineIndex::new(&text), "{name}");
+            assert_eq!(check_scene(&db, file), &fresh_check(&text), "{name}");
+            // And back: the original text, parsed and checked as at first.
+            db.set_text(file, START);
+            assert_eq!(
+                parse_scene(&db, file),
+                &ParsedScene::new(file.id(&db), START)
+            );
+            assert_eq!(check_scene(&db, file), &fresh_check(START), "{name} undone");
+            let stats = db.parse_stats()[0].1;
+            assert_eq!(stats.whole, 1, "{name}: {stats:?}");
+        }
+    }
+
     /// A scene of many statements: an edit inside one re-reads that one alone, and
     /// the tree is still the whole file's.
     #[test]
