@@ -194,6 +194,26 @@ print(f"completion after the last line of a primitive: median {c[0]:.1f} ms, wor
 where = {"textDocument": {"uri": cal_uri}, "position": {"line": 1, "character": 15}}
 c = timed("textDocument/hover", where)
 print(f"hover in f.cal: median {c[0]:.1f} ms, worst {c[1]:.1f} ms")
+
+# As an editor asks while someone types: each request right after an edit (the
+# first request after an edit is the one that finds the scope out of date).
+for method, position in (("textDocument/hover", {"line": line_no - 3, "character": 1}),
+                         ("textDocument/completion", {"line": line_no + 1, "character": 0})):
+    samples = []
+    for k in range(1, hovers + 1):
+        col, old_len, new = column, 1, str(k % 10)
+        lines[line_no] = lines[line_no][:col] + new + lines[line_no][col + old_len:]
+        version[0] += 1
+        send({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
+            "textDocument": {"uri": scene_uri, "version": version[0]}, "contentChanges": [
+                {"range": {"start": {"line": line_no, "character": col},
+                           "end": {"line": line_no, "character": col + old_len}}, "text": new}]}})
+        wait(diagnostics_of(scene_uri, version[0]))
+        t = time.perf_counter()
+        request(method, {"textDocument": {"uri": scene_uri}, "position": position})
+        samples.append(ms(time.perf_counter() - t))
+    print(f"{method.split('/')[1]} right after an edit: median {statistics.median(samples):.1f} ms, "
+          f"worst {max(samples):.1f} ms")
 mem = memory()
 print(f"server memory: {mem.get('VmRSS', 0):.0f} MB resident, peak {mem.get('VmHWM', 0):.0f} MB")
 scene_path = os.path.realpath(os.path.join(folder, "scene.rad"))

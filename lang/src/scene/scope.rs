@@ -6,6 +6,7 @@
 //! earlier uses. This works on any syntax tree, including ones with unknown types and
 //! errors, which is what an editor has while someone types.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 use super::syntax::{Item, SceneFile, Word};
@@ -20,8 +21,9 @@ pub struct Definition {
     pub name_span: Span,
     /// The whole statement.
     pub span: Span,
-    /// The type keyword as written (`alias` for aliases).
-    pub type_name: String,
+    /// The type keyword as written (`alias` for aliases); a known type's name is the
+    /// schema's, not a copy (the scope of a big scene is rebuilt after each edit).
+    pub type_name: Cow<'static, str>,
     /// Whether later primitives may use it as a modifier (surfaces cannot; unknown
     /// types are given the benefit of the doubt).
     pub is_modifier: bool,
@@ -44,8 +46,11 @@ pub struct ModifierScope {
 
 impl ModifierScope {
     pub fn new(file: &SceneFile) -> Self {
-        let mut scope = ModifierScope::default();
-        let mut bound: HashMap<String, usize> = HashMap::new();
+        let mut scope = ModifierScope {
+            definitions: Vec::with_capacity(file.items.len()),
+            references: Vec::with_capacity(file.items.len()),
+        };
+        let mut bound: HashMap<&str, usize> = HashMap::new();
         for item in &file.items {
             match item {
                 Item::Primitive(p) => {
@@ -60,12 +65,16 @@ impl ModifierScope {
                         }
                     }
                     let is_modifier = ty.is_none_or(|t| t.category != Category::Surface);
-                    scope.define(&p.name, p.span, &p.kind.text, is_modifier, &mut bound);
+                    let type_name = match ty {
+                        Some(t) => Cow::Borrowed(t.name),
+                        None => Cow::Owned(p.kind.text.clone()),
+                    };
+                    scope.define(&p.name, p.span, type_name, is_modifier, &mut bound);
                 }
                 Item::Alias(a) => {
                     scope.reference(&a.modifier, &bound);
                     scope.reference(&a.target, &bound);
-                    scope.define(&a.name, a.span, "alias", true, &mut bound);
+                    scope.define(&a.name, a.span, Cow::Borrowed("alias"), true, &mut bound);
                 }
                 Item::Command(_) | Item::Comment(_) | Item::Error(_) => {}
             }
@@ -73,35 +82,35 @@ impl ModifierScope {
         scope
     }
 
-    fn reference(&mut self, word: &Word, bound: &HashMap<String, usize>) {
+    fn reference(&mut self, word: &Word, bound: &HashMap<&str, usize>) {
         if matches!(word.text.as_str(), "void" | "inherit") {
             return;
         }
         self.references.push(Reference {
             name: word.text.clone(),
             span: word.span,
-            target: bound.get(&word.text).copied(),
+            target: bound.get(word.text.as_str()).copied(),
         });
     }
 
-    fn define(
+    fn define<'a>(
         &mut self,
-        name: &Word,
+        name: &'a Word,
         span: Span,
-        type_name: &str,
+        type_name: Cow<'static, str>,
         is_modifier: bool,
-        bound: &mut HashMap<String, usize>,
+        bound: &mut HashMap<&'a str, usize>,
     ) {
         let index = self.definitions.len();
         self.definitions.push(Definition {
             name: name.text.clone(),
             name_span: name.span,
             span,
-            type_name: type_name.to_string(),
+            type_name,
             is_modifier,
         });
         if is_modifier {
-            bound.insert(name.text.clone(), index);
+            bound.insert(&name.text, index);
         }
     }
 
