@@ -26,6 +26,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use crate::scene::Expansion;
 use crate::scene::reparse::Reparse;
+use crate::scene::scope::ModifierScope;
 use crate::schema::FileKind;
 use crate::source::{FileId, LineIndex};
 
@@ -61,6 +62,9 @@ pub struct FileContents {
     text: String,
     lines: LineIndex,
     scene: OnceLock<ParsedScene>,
+    /// Which modifier each name refers to, from `scene`; edited with it while an
+    /// edit changes no name (then only spans move), else built again when asked.
+    scope: OnceLock<ModifierScope>,
 }
 
 impl FileContents {
@@ -69,6 +73,7 @@ impl FileContents {
             lines: LineIndex::new(&text),
             text,
             scene: OnceLock::new(),
+            scope: OnceLock::new(),
         }
     }
 
@@ -94,14 +99,31 @@ impl FileContents {
         new_end: usize,
     ) -> Option<Reparse> {
         self.lines.edit(&self.text, start, old_end, new_end);
-        let parsed = self.scene.get_mut()?;
+        let Some(parsed) = self.scene.get_mut() else {
+            self.scope = OnceLock::new();
+            return None;
+        };
         let text = &self.text;
+        let scope = &mut self.scope;
         let edited = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            parsed.edit(file, text, start, old_end, new_end)
+            let reparse = parsed.edit(file, text, start, old_end, new_end);
+            let kept = match (scope.get_mut(), &reparse.change) {
+                (Some(scope), Some(change)) => scope.edited(&parsed.syntax, change),
+                _ => false,
+            };
+            if !kept {
+                *scope = OnceLock::new();
+            }
+            reparse
         }));
         // A bug in the reparse must not leave a wrong tree behind: forget it, and
         // the next query parses the whole text.
-        edited.map_err(|_| self.scene = OnceLock::new()).ok()
+        edited
+            .map_err(|_| {
+                self.scene = OnceLock::new();
+                self.scope = OnceLock::new();
+            })
+            .ok()
     }
 }
 

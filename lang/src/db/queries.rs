@@ -29,10 +29,14 @@ pub fn line_index(db: &dyn Db, file: SourceFile) -> &LineIndex {
     &file.contents(db).lines
 }
 
-/// Which modifier each name refers to (navigation, completion, hover).
-#[salsa::tracked(returns(ref), no_eq)]
-pub fn modifier_scope(db: &dyn Db, file: SourceFile) -> ModifierScope {
-    ModifierScope::new(&parse_scene(db, file).syntax)
+/// Which modifier each name refers to (navigation, completion, hover): built from
+/// the parse the first time it is asked for, then kept up to date by the database's
+/// edits while they change no name.
+pub fn modifier_scope(db: &dyn Db, file: SourceFile) -> &ModifierScope {
+    let contents = file.contents(db);
+    contents
+        .scope
+        .get_or_init(|| ModifierScope::new(&parse_scene(db, file).syntax))
 }
 
 /// Every diagnostic for one file checked as a scene on its own, as `radc check FILE`
@@ -463,6 +467,11 @@ mod edit_tests {
                     format!("seed {seed} step {step}: {range:?} -> {inserted:?} in {text:?}");
                 assert_eq!(parse_scene(&db, file), &fresh, "{context}");
                 assert_eq!(line_index(&db, file), &LineIndex::new(&text), "{context}");
+                assert_eq!(
+                    modifier_scope(&db, file),
+                    &ModifierScope::new(&fresh.syntax),
+                    "{context}"
+                );
                 if step % 5 == 0 {
                     assert_eq!(check_scene(&db, file), &fresh_check(&text), "{context}");
                 }
@@ -547,6 +556,7 @@ mod edit_tests {
             let mut db = Database::new(Arc::new(Generator));
             let file = db.add_file("/x/a.rad", START);
             check_scene(&db, file);
+            modifier_scope(&db, file);
             let mut text = START.to_string();
             let (range, new) = edit(&text);
             assert!(text.is_char_boundary(range.start) && text.is_char_boundary(range.end));
@@ -555,6 +565,10 @@ mod edit_tests {
             let fresh = ParsedScene::new(file.id(&db), &text);
             assert_eq!(parse_scene(&db, file), &fresh, "{name}: {text:?}");
             assert_eq!(line_index(&db, file), &LineIndex::new(&text), "{name}");
+            assert_eq!(
+                modifier_scope(&db, file),
+                &ModifierScope::new(&fresh.syntax)
+            );
             assert_eq!(check_scene(&db, file), &fresh_check(&text), "{name}");
             // And back: the original text, parsed and checked as at first.
             db.set_text(file, START);
@@ -566,6 +580,37 @@ mod edit_tests {
             let stats = db.parse_stats()[0].1;
             assert_eq!(stats.whole, 1, "{name}: {stats:?}");
         }
+    }
+
+    /// An edit that keeps every name, in order, but moves a reference into the
+    /// statement before it: the reference now comes before the definition it bound
+    /// to, so the scope is built again rather than edited.
+    #[test]
+    fn a_reference_moved_between_statements_rebinds() {
+        let old = "void plastic m1\n0\n0\n5 1 1 1 0 0\n\
+                   m1 mixfunc a 4 void void f . 0 0\n\
+                   a mixfunc b 4 void void f . 0 0\n";
+        let new = "void plastic m1\n0\n0\n5 1 1 1 0 0\n\
+                   m1 mixfunc a 4 a void f . 0 0\n\
+                   void mixfunc b 4 void void f . 0 0\n";
+        let mut db = Database::default();
+        let file = db.add_file("a.rad", old);
+        let before = modifier_scope(&db, file).clone();
+        assert!(
+            before
+                .references
+                .iter()
+                .any(|r| r.name == "a" && r.target.is_some())
+        );
+        db.set_text(file, new);
+        let fresh = ModifierScope::new(&ParsedScene::new(file.id(&db), new).syntax);
+        assert_eq!(modifier_scope(&db, file), &fresh);
+        assert!(
+            fresh
+                .references
+                .iter()
+                .any(|r| r.name == "a" && r.target.is_none())
+        );
     }
 
     /// A scene of many statements: an edit inside one re-reads that one alone, and

@@ -23,12 +23,27 @@ use crate::diagnostic::Diagnostic;
 use crate::source::{self, FileId, Span};
 
 /// What an edit cost the parse.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Reparse {
     /// Statements read again.
     pub statements: usize,
     /// Whether the whole file was parsed again.
     pub whole: bool,
+    /// Which statements changed, unless the whole file was parsed again.
+    pub change: Option<Change>,
+}
+
+/// The statements an edit replaced.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Change {
+    /// The new statements, as indices into the new tree's items.
+    pub items: std::ops::Range<usize>,
+    /// The old statements they replaced: from the start of the first to the end of
+    /// the last (in the old text), `u32::MAX` for "to the end".
+    pub old_start: u32,
+    pub old_end: u32,
+    /// How far the statements after them moved.
+    pub delta: i64,
 }
 
 /// A file's syntax tree and its syntax diagnostics.
@@ -123,6 +138,7 @@ impl ParsedScene {
             return Reparse {
                 statements: self.syntax.items.len(),
                 whole: true,
+                change: None,
             };
         }
         let delta = new_end as i64 - old_end as i64;
@@ -211,6 +227,12 @@ impl ParsedScene {
         Reparse {
             statements: read_again,
             whole: false,
+            change: Some(Change {
+                items: keep..keep + read_again,
+                old_start: old_from,
+                old_end: old_after,
+                delta,
+            }),
         }
     }
 }
@@ -219,7 +241,7 @@ fn clamp_u32(v: usize) -> u32 {
     u32::try_from(v).unwrap_or(u32::MAX)
 }
 
-fn shift(span: &mut Span, delta: i64) {
+pub(super) fn shift(span: &mut Span, delta: i64) {
     span.start = (i64::from(span.start) + delta) as u32;
     span.end = (i64::from(span.end) + delta) as u32;
 }

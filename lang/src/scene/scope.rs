@@ -9,6 +9,7 @@
 use std::borrow::Cow;
 use std::collections::HashMap;
 
+use super::reparse::{Change, shift};
 use super::syntax::{Item, SceneFile, Word};
 use crate::schema::{self, Category, StringKind};
 use crate::source::Span;
@@ -46,12 +47,16 @@ pub struct ModifierScope {
 
 impl ModifierScope {
     pub fn new(file: &SceneFile) -> Self {
+        Self::of(&file.items)
+    }
+
+    fn of(items: &[Item]) -> Self {
         let mut scope = ModifierScope {
-            definitions: Vec::with_capacity(file.items.len()),
-            references: Vec::with_capacity(file.items.len()),
+            definitions: Vec::with_capacity(items.len()),
+            references: Vec::with_capacity(items.len()),
         };
         let mut bound: HashMap<&str, usize> = HashMap::new();
-        for item in &file.items {
+        for item in items {
             match item {
                 Item::Primitive(p) => {
                     scope.reference(&p.modifier, &bound);
@@ -112,6 +117,64 @@ impl ModifierScope {
         if is_modifier {
             bound.insert(&name.text, index);
         }
+    }
+
+    /// Brings the scope up to date after an edit of the file (now `file`) that
+    /// replaced some statements (`change`), when the new statements define and refer
+    /// to the same names in the same order as the old ones (editing a number, say):
+    /// then only spans move. Returns `false` (the scope is left as it was) when
+    /// names changed, and it must be built again. The result is exactly
+    /// `ModifierScope::new(file)` (tested with the random edits in `db`).
+    pub fn edited(&mut self, file: &SceneFile, change: &Change) -> bool {
+        let Some(window) = file.items.get(change.items.clone()) else {
+            return false;
+        };
+        let new = ModifierScope::of(window);
+        let replaced = |s: &Span| s.start >= change.old_start && s.start <= change.old_end;
+        let d0 = self
+            .definitions
+            .partition_point(|d| d.span.start < change.old_start);
+        let d1 = d0 + self.definitions[d0..].partition_point(|d| replaced(&d.span));
+        let r0 = self
+            .references
+            .partition_point(|r| r.span.start < change.old_start);
+        let r1 = r0 + self.references[r0..].partition_point(|r| replaced(&r.span));
+        let (old_defs, old_refs) = (&self.definitions[d0..d1], &self.references[r0..r1]);
+        if old_defs.len() != new.definitions.len() || old_refs.len() != new.references.len() {
+            return false;
+        }
+        let same_defs = old_defs.iter().zip(&new.definitions).all(|(a, b)| {
+            a.name == b.name && a.type_name == b.type_name && a.is_modifier == b.is_modifier
+        });
+        // Each reference is inside the statement of one definition: which one, and
+        // its name, decide what it binds to.
+        let owner = |defs: &[Definition], r: &Reference| {
+            defs.partition_point(|d| d.span.start <= r.span.start)
+        };
+        let same_refs = old_refs
+            .iter()
+            .zip(&new.references)
+            .all(|(a, b)| a.name == b.name && owner(old_defs, a) == owner(&new.definitions, b));
+        if !same_defs || !same_refs {
+            return false;
+        }
+        for (old, new) in self.definitions[d0..d1].iter_mut().zip(&new.definitions) {
+            old.name_span = new.name_span;
+            old.span = new.span;
+        }
+        for (old, new) in self.references[r0..r1].iter_mut().zip(&new.references) {
+            old.span = new.span;
+        }
+        if change.delta != 0 {
+            for d in &mut self.definitions[d1..] {
+                shift(&mut d.name_span, change.delta);
+                shift(&mut d.span, change.delta);
+            }
+            for r in &mut self.references[r1..] {
+                shift(&mut r.span, change.delta);
+            }
+        }
+        true
     }
 
     /// The definition named or referred to by the word at byte `offset`.
