@@ -7,10 +7,14 @@ Writes a scene of N primitives that uses a function file (`f.cal`, through a
   - E one-character edits of the scene (a digit of one radius changes), each timed
     from `didChange` to the `publishDiagnostics` of that version; sent as the
     server asks (incremental range edits when it offers them, else the full text);
+    then E edits typing and erasing a digit (later spans move), and E typing and
+    erasing a letter in the number (the statement breaks, then mends);
   - H hovers and H completions, each timed from request to response;
   - the server's memory (VmRSS and peak VmHWM from /proc);
   - the server's parse counters (`radc/stats`, enabled by RADC_LSP_STATS=1) before
-    and after the edits: the scene is re-parsed once per edit, the .cal never.
+    and after the edits: the scene is re-parsed once per edit (only the statement
+    the edit touched is read again: whole parses and statements read are counted
+    too), the .cal never.
 
 usage: bench/lsp_latency.py [path/to/radc] [primitives] [edits]
 Figures and the command are in BENCHMARKS.md (language server latency).
@@ -127,25 +131,49 @@ target = n // 2
 lines = text.split("\n")
 line_no = lines.index(f"m{target % 50} sphere s{target}") + 3
 column = len(lines[line_no]) - 1
-times = []
-cpu_before = cpu()
-for k in range(1, edits + 1):
-    digit = str(k % 10)
-    lines[line_no] = lines[line_no][:column] + digit
-    if sync == 2:
-        change = {"range": {"start": {"line": line_no, "character": column},
-                            "end": {"line": line_no, "character": column + 1}}, "text": digit}
-    else:
-        change = {"text": "\n".join(lines)}
-    t = time.perf_counter()
-    send({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
-        "textDocument": {"uri": scene_uri, "version": k + 1}, "contentChanges": [change]}})
-    wait(diagnostics_of(scene_uri, k + 1))
-    times.append(ms(time.perf_counter() - t))
-cpu_per_edit = ms(cpu() - cpu_before) / edits
+version = [1]
+
+
+def run_edits(label, count, edit):
+    """Applies `count` edits, `edit(k)` giving (column, old length, new text) on the
+    radius line; returns the wall times and the server CPU per edit."""
+    times = []
+    counts = set()
+    cpu_before = cpu()
+    for k in range(1, count + 1):
+        col, old_len, new = edit(k)
+        line = lines[line_no]
+        lines[line_no] = line[:col] + new + line[col + old_len:]
+        if sync == 2:
+            change = {"range": {"start": {"line": line_no, "character": col},
+                                "end": {"line": line_no, "character": col + old_len}}, "text": new}
+        else:
+            change = {"text": "\n".join(lines)}
+        version[0] += 1
+        t = time.perf_counter()
+        send({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
+            "textDocument": {"uri": scene_uri, "version": version[0]}, "contentChanges": [change]}})
+        published = wait(diagnostics_of(scene_uri, version[0]))
+        times.append(ms(time.perf_counter() - t))
+        counts.add(len(published["params"]["diagnostics"]))
+    per_edit = ms(cpu() - cpu_before) / count
+    print(f"edit -> diagnostics, {count} edits ({label}): median {statistics.median(times):.1f} ms, "
+          f"worst {max(times):.1f} ms; server CPU {per_edit:.1f} ms per edit; "
+          f"diagnostics published: {sorted(counts)}")
+    return published
+
+
+# One character replaced (the digit changes, no span moves).
+run_edits("a digit replaced", edits, lambda k: (column, 1, str(k % 10)))
 after = request("radc/stats", None)
-print(f"edit -> diagnostics over {edits} one-character edits: median {statistics.median(times):.1f} ms, "
-      f"worst {max(times):.1f} ms; server CPU {cpu_per_edit:.1f} ms per edit")
+# Typing: a digit inserted after the radius, then erased (every later span moves).
+run_edits("a digit typed, then erased", edits,
+          lambda k: (column + 1, 0, "7") if k % 2 else (column + 1, 1, ""))
+# The statement broken (a letter in a number: the recovering parser reads the rest
+# of the file, as a whole parse would), then mended.
+run_edits("a letter typed into the number, then erased", edits,
+          lambda k: (column + 1, 0, "x") if k % 2 else (column + 1, 1, ""))
+last = request("radc/stats", None)
 
 
 def timed(method, params):
@@ -166,15 +194,40 @@ print(f"completion after the last line of a primitive: median {c[0]:.1f} ms, wor
 where = {"textDocument": {"uri": cal_uri}, "position": {"line": 1, "character": 15}}
 c = timed("textDocument/hover", where)
 print(f"hover in f.cal: median {c[0]:.1f} ms, worst {c[1]:.1f} ms")
+
+# As an editor asks while someone types: each request right after an edit (the
+# first request after an edit is the one that finds the scope out of date).
+for method, position in (("textDocument/hover", {"line": line_no - 3, "character": 1}),
+                         ("textDocument/completion", {"line": line_no + 1, "character": 0})):
+    samples = []
+    for k in range(1, hovers + 1):
+        col, old_len, new = column, 1, str(k % 10)
+        lines[line_no] = lines[line_no][:col] + new + lines[line_no][col + old_len:]
+        version[0] += 1
+        send({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
+            "textDocument": {"uri": scene_uri, "version": version[0]}, "contentChanges": [
+                {"range": {"start": {"line": line_no, "character": col},
+                           "end": {"line": line_no, "character": col + old_len}}, "text": new}]}})
+        wait(diagnostics_of(scene_uri, version[0]))
+        t = time.perf_counter()
+        request(method, {"textDocument": {"uri": scene_uri}, "position": position})
+        samples.append(ms(time.perf_counter() - t))
+    print(f"{method.split('/')[1]} right after an edit: median {statistics.median(samples):.1f} ms, "
+          f"worst {max(samples):.1f} ms")
 mem = memory()
 print(f"server memory: {mem.get('VmRSS', 0):.0f} MB resident, peak {mem.get('VmHWM', 0):.0f} MB")
 scene_path = os.path.realpath(os.path.join(folder, "scene.rad"))
 cal_path = os.path.realpath(os.path.join(folder, "f.cal"))
-print("radc/stats after the edits:", json.dumps(after))
+print("radc/stats after the first edits:", json.dumps(after))
 for name, path in (("scene.rad", scene_path), ("f.cal", cal_path)):
-    b = (before or {}).get("parses", {}).get(path, 0)
-    a = (after or {}).get("parses", {}).get(path, 0)
-    print(f"parses of {name}: {b} after opening, {a} after the {edits} edits")
+    def stat(stats, key):
+        return (stats or {}).get(key, {}).get(path, 0)
+    print(f"parses of {name}: {stat(before, 'parses')} after opening "
+          f"({stat(before, 'whole_parses')} whole, {stat(before, 'statements_read')} statements read), "
+          f"{stat(after, 'parses')} after the {edits} edits "
+          f"({stat(after, 'whole_parses')} whole, {stat(after, 'statements_read')} statements read), "
+          f"{stat(last, 'parses')} after all {3 * edits} "
+          f"({stat(last, 'whole_parses')} whole, {stat(last, 'statements_read')} statements read)")
 
 send({"jsonrpc": "2.0", "id": 2, "method": "shutdown"})
 wait(lambda m: m.get("id") == 2)

@@ -1294,6 +1294,14 @@ fn an_edit_reparses_only_the_edited_file() {
         json!({"textDocument": {"uri": scene, "version": version}, "contentChanges": [
             {"range": range(line, start, line, end), "text": text}]})
     };
+    let statements = |client: &mut Client| {
+        let stats = client.request("radc/stats", Value::Null);
+        (
+            stats["whole_parses"].clone(),
+            stats["statements_read"][&scene_path].clone(),
+        )
+    };
+    let (whole, opened) = statements(client);
     client.notify("textDocument/didChange", one_char(2, 8, 3, 4, "6"));
     let published = client.notification("textDocument/publishDiagnostics");
     assert_eq!(
@@ -1304,6 +1312,10 @@ fn an_edit_reparses_only_the_edited_file() {
         counts(client),
         json!({cal_path.as_str(): 1, scene_path.as_str(): 2})
     );
+    // Of the scene, only the edited statement was read again.
+    let after = statements(client);
+    assert_eq!(after.0, whole);
+    assert_eq!(after.1.as_u64(), opened.as_u64().map(|n| n + 1));
     client.notify("textDocument/didChange", one_char(3, 10, 1, 2, ""));
     let published = client.notification("textDocument/publishDiagnostics");
     let undefined: Vec<&Value> = published["diagnostics"]

@@ -54,7 +54,7 @@ fn clamp_u32(v: usize) -> u32 {
 
 /// Maps byte offsets to 1-based line and column numbers (columns count characters,
 /// as editors and `file:line:col` readers expect).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LineIndex {
     line_starts: Vec<usize>,
 }
@@ -64,6 +64,34 @@ impl LineIndex {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         LineIndex { line_starts }
+    }
+
+    /// Updates the index after an edit: bytes `start..old_end` of the text it was
+    /// built from are now bytes `start..new_end` of `text`. The lines before the edit
+    /// are kept and those after it shifted, so the cost is one pass over the line
+    /// starts, not over the text. The result is exactly `LineIndex::new(text)`.
+    pub fn edit(&mut self, text: &str, start: usize, old_end: usize, new_end: usize) {
+        let Some(inserted) = text.as_bytes().get(start..new_end) else {
+            *self = LineIndex::new(text);
+            return;
+        };
+        // A line starts after each newline: those of the old bytes start in
+        // `start + 1..=old_end`.
+        let from = self.line_starts.partition_point(|&s| s <= start);
+        let to = self
+            .line_starts
+            .partition_point(|&s| s <= old_end)
+            .max(from);
+        let delta = new_end as isize - old_end as isize;
+        for s in &mut self.line_starts[to..] {
+            *s = s.wrapping_add_signed(delta);
+        }
+        let new = inserted
+            .iter()
+            .enumerate()
+            .filter(|&(_, &b)| b == b'\n')
+            .map(|(i, _)| start + i + 1);
+        self.line_starts.splice(from..to, new);
     }
 
     /// 0-based line containing `offset`.
@@ -120,6 +148,31 @@ mod tests {
         // 'd' sits after a two-byte 'é': byte 7, character column 4.
         assert_eq!(idx.line_col(text, 7), (2, 4));
         assert_eq!(idx.line_col(text, text.len()), (3, 1));
+    }
+
+    #[test]
+    fn an_edited_index_is_the_index_of_the_new_text() {
+        let mut rng = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |n: usize| {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng % n as u64) as usize
+        };
+        let pieces = ["", "a", "\n", "\r\n", "ab\ncd", "\n\n", "é\n"];
+        let mut text = String::from("one\ntwo\n\nthree");
+        let mut index = LineIndex::new(&text);
+        for _ in 0..2000 {
+            let start = next(text.len() + 1);
+            let end = (start + next(6)).min(text.len());
+            if !text.is_char_boundary(start) || !text.is_char_boundary(end) {
+                continue;
+            }
+            let new = pieces[next(pieces.len())];
+            text.replace_range(start..end, new);
+            index.edit(&text, start, end, start + new.len());
+            assert_eq!(index, LineIndex::new(&text), "{text:?}");
+        }
     }
 
     #[test]

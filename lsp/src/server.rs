@@ -18,6 +18,8 @@ use tower_lsp_server::jsonrpc::Result;
 use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer};
 
+use radc_lang::db::ParseCount;
+
 use crate::config::Config;
 use crate::document::{Document, Kind};
 use crate::handlers;
@@ -67,17 +69,25 @@ impl Backend {
     }
 
     /// The `radc/stats` request (when `RADC_LSP_STATS` is set): how many times each
-    /// file was parsed, so a benchmark can show that an edit re-parses only its file.
+    /// file was parsed (whole, or the statements an edit touched) and how many
+    /// statements were read, so a benchmark can show that an edit re-parses only its
+    /// file, and only the statements it touched.
     pub async fn stats(&self) -> Result<serde_json::Value> {
         if std::env::var_os("RADC_LSP_STATS").is_none() {
             return Ok(serde_json::Value::Null);
         }
-        let counts = self.session().parse_counts();
-        let parses: serde_json::Map<String, serde_json::Value> = counts
-            .into_iter()
-            .map(|(path, n)| (path, n.into()))
-            .collect();
-        Ok(serde_json::json!({ "parses": parses }))
+        let stats = self.session().parse_stats();
+        let map = |f: fn(&ParseCount) -> u64| -> serde_json::Map<String, serde_json::Value> {
+            stats
+                .iter()
+                .map(|(path, c)| (path.clone(), f(c).into()))
+                .collect()
+        };
+        Ok(serde_json::json!({
+            "parses": map(|c| c.parses),
+            "whole_parses": map(|c| c.whole),
+            "statements_read": map(|c| c.statements),
+        }))
     }
 
     fn write(&self, f: impl FnOnce(&mut Session)) {

@@ -6,7 +6,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use radc_lang::db::{Database, SceneSet, SourceFile};
+use radc_lang::LineIndex;
+use radc_lang::db::{Database, ParseCount, SceneSet, SourceFile};
 use tower_lsp_server::ls_types::{Position, TextDocumentContentChangeEvent, Uri};
 
 use crate::aux_files::{DiskAuxFiles, Overlay};
@@ -109,20 +110,18 @@ impl Session {
             return;
         }
         doc.version = version;
-        let mut text: Option<String> = None;
+        let file = doc.file;
         for c in changes {
             match c.range {
-                None => text = Some(c.text),
+                None => self.db.set_text(file, c.text),
                 Some(range) => {
-                    let t = text.get_or_insert_with(|| doc.file.text(&self.db).clone());
-                    let start = offset(t, range.start);
-                    let end = offset(t, range.end).max(start);
-                    t.replace_range(start..end, &c.text);
+                    let text = file.text(&self.db);
+                    let lines = radc_lang::db::line_index(&self.db, file);
+                    let start = offset(text, lines, range.start);
+                    let end = offset(text, lines, range.end).max(start);
+                    self.db.edit(file, start..end, &c.text);
                 }
             }
-        }
-        if let Some(text) = text {
-            self.db.set_text(doc.file, text);
         }
         self.cal_changed(uri);
     }
@@ -188,9 +187,9 @@ impl Session {
         &self.db
     }
 
-    /// How many times each file was parsed (the `radc/stats` request).
-    pub fn parse_counts(&self) -> Vec<(String, u64)> {
-        self.db.parse_counts()
+    /// How each file was parsed (the `radc/stats` request).
+    pub fn parse_stats(&self) -> Vec<(String, ParseCount)> {
+        self.db.parse_stats()
     }
 
     pub fn open_uris(&self) -> Vec<Uri> {
@@ -275,14 +274,12 @@ fn read_scene(path: &Path) -> Option<String> {
 
 /// The byte offset of an LSP position (line, UTF-16 column) in `text`, clamped to its
 /// line and to the text (as the protocol asks of positions past an end).
-fn offset(text: &str, pos: Position) -> usize {
-    let line_start = match pos.line {
-        0 => 0,
-        n => match text.match_indices('\n').nth(n as usize - 1) {
-            Some((i, _)) => i + 1,
-            None => return text.len(),
-        },
-    };
+fn offset(text: &str, lines: &LineIndex, pos: Position) -> usize {
+    let line = pos.line as usize;
+    if line >= lines.line_count() {
+        return text.len();
+    }
+    let line_start = lines.line_start(line);
     let mut units = 0u32;
     for (i, c) in text[line_start..].char_indices() {
         if units >= pos.character || c == '\n' {

@@ -11,21 +11,24 @@
 mod cal;
 mod queries;
 
+pub use crate::scene::ParsedScene;
 pub use cal::{
     CalDef, CalIndex, CalName, CalUse, ParsedCal, cal_index, cal_values, check_cal, parse_cal,
 };
 pub use queries::{
-    ParsedScene, check_scene, check_scene_set, format_scene, line_index, modifier_scope,
-    parse_scene,
+    check_scene, check_scene_set, format_scene, line_index, modifier_scope, parse_scene,
 };
 
 use std::collections::HashMap;
+use std::ops::Range;
 use std::path::Path;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use crate::scene::Expansion;
+use crate::scene::reparse::Reparse;
+use crate::scene::scope::ModifierScope;
 use crate::schema::FileKind;
-use crate::source::FileId;
+use crate::source::{FileId, LineIndex};
 
 /// One scene file the front end has handed to the database.
 #[salsa::input(debug)]
@@ -35,10 +38,104 @@ pub struct SourceFile {
     pub id: FileId,
     /// Where the file lives; auxiliary files are searched relative to its folder.
     pub path: String,
-    pub text: String,
+    /// Changed only through [`Database::set_text`] and [`Database::edit`], which keep
+    /// the line index and the parse in step with the text.
+    contents: FileContents,
     /// Whether unused modifiers are worth a warning (not in `.mat` libraries).
     #[returns(copy)]
     pub warn_unused: bool,
+}
+
+impl SourceFile {
+    pub fn text(self, db: &dyn Db) -> &String {
+        &self.contents(db).text
+    }
+}
+
+/// A file's text and what is kept up to date with it as it is edited, instead of
+/// being computed again from the whole text: its line index, and (once something
+/// asked for it) its parse as a scene, of which an edit re-reads only the statements
+/// it can change. Both are pure functions of the text (tested against computing them
+/// afresh), so keeping them here rather than in tracked queries changes no answer.
+#[derive(Debug)]
+pub struct FileContents {
+    text: String,
+    lines: LineIndex,
+    scene: OnceLock<ParsedScene>,
+    /// Which modifier each name refers to, from `scene`; edited with it while an
+    /// edit changes no name (then only spans move), else built again when asked.
+    scope: OnceLock<ModifierScope>,
+}
+
+impl FileContents {
+    fn new(text: String) -> Self {
+        FileContents {
+            lines: LineIndex::new(&text),
+            text,
+            scene: OnceLock::new(),
+            scope: OnceLock::new(),
+        }
+    }
+
+    /// Replaces bytes `start..old_end` with `inserted` (on character boundaries).
+    fn edit(
+        &mut self,
+        file: FileId,
+        start: usize,
+        old_end: usize,
+        inserted: &str,
+    ) -> Option<Reparse> {
+        self.text.replace_range(start..old_end, inserted);
+        self.edited(file, start, old_end, start + inserted.len())
+    }
+
+    /// Brings the index and the parse up to date: bytes `start..old_end` of the old
+    /// text are `start..new_end` of the text now.
+    fn edited(
+        &mut self,
+        file: FileId,
+        start: usize,
+        old_end: usize,
+        new_end: usize,
+    ) -> Option<Reparse> {
+        self.lines.edit(&self.text, start, old_end, new_end);
+        let Some(parsed) = self.scene.get_mut() else {
+            self.scope = OnceLock::new();
+            return None;
+        };
+        let text = &self.text;
+        let scope = &mut self.scope;
+        let edited = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let reparse = parsed.edit(file, text, start, old_end, new_end);
+            let kept = match (scope.get_mut(), &reparse.change) {
+                (Some(scope), Some(change)) => scope.edited(&parsed.syntax, change),
+                _ => false,
+            };
+            if !kept {
+                *scope = OnceLock::new();
+            }
+            reparse
+        }));
+        // A bug in the reparse must not leave a wrong tree behind: forget it, and
+        // the next query parses the whole text.
+        edited
+            .map_err(|_| {
+                self.scene = OnceLock::new();
+                self.scope = OnceLock::new();
+            })
+            .ok()
+    }
+}
+
+/// How often a file was parsed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ParseCount {
+    /// Parses of the file, whole or of the statements an edit touched.
+    pub parses: u64,
+    /// Of those, parses of the whole file.
+    pub whole: u64,
+    /// Statements read, over all parses.
+    pub statements: u64,
 }
 
 /// Files read in order as one scene, as `oconv` reads its arguments (materials first,
@@ -99,6 +196,53 @@ pub trait AuxFiles: Send + Sync {
     }
 }
 
+/// The bytes in which two texts differ: `start..old_end` of `old` became
+/// `start..new_end` of `new` (on character boundaries of both).
+fn differing_bytes(old: &str, new: &str) -> (usize, usize, usize) {
+    let (a, b) = (old.as_bytes(), new.as_bytes());
+    let mut prefix = common_prefix(a, b);
+    while !old.is_char_boundary(prefix) || !new.is_char_boundary(prefix) {
+        prefix -= 1;
+    }
+    let most = a.len().min(b.len()) - prefix;
+    let mut suffix = common_suffix(&a[a.len() - most..], &b[b.len() - most..]);
+    while !old.is_char_boundary(a.len() - suffix) || !new.is_char_boundary(b.len() - suffix) {
+        suffix -= 1;
+    }
+    (prefix, a.len() - suffix, b.len() - suffix)
+}
+
+/// Whole blocks are compared with `memcmp`, then bytes.
+const BLOCK: usize = 4096;
+
+fn common_prefix(a: &[u8], b: &[u8]) -> usize {
+    let n = a.len().min(b.len());
+    let mut i = 0;
+    while i + BLOCK <= n && a[i..i + BLOCK] == b[i..i + BLOCK] {
+        i += BLOCK;
+    }
+    i + a[i..n]
+        .iter()
+        .zip(&b[i..n])
+        .take_while(|(x, y)| x == y)
+        .count()
+}
+
+fn common_suffix(a: &[u8], b: &[u8]) -> usize {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[a.len() - n..], &b[b.len() - n..]);
+    let mut k = 0;
+    while k + BLOCK <= n && a[n - k - BLOCK..n - k] == b[n - k - BLOCK..n - k] {
+        k += BLOCK;
+    }
+    k + a[..n - k]
+        .iter()
+        .rev()
+        .zip(b[..n - k].iter().rev())
+        .take_while(|(x, y)| x == y)
+        .count()
+}
+
 /// For front ends without a file system, and for tests.
 pub struct AssumeAuxFilesExist;
 
@@ -116,6 +260,9 @@ pub trait Db: salsa::Database {
     /// Called each time a file is parsed (a query really ran, not a memo reused):
     /// how the server's statistics show that an edit re-parses only the edited file.
     fn note_parse(&self, _file: SourceFile) {}
+
+    /// Called when a whole scene file was parsed, with its number of statements.
+    fn note_statements(&self, _file: SourceFile, _statements: usize) {}
 }
 
 /// The one database implementation. Cloning it is cheap (a snapshot for readers).
@@ -129,7 +276,7 @@ pub struct Database {
     /// tests see incrementality.
     log: Arc<Mutex<Option<Vec<String>>>>,
     /// How many times each file (by path) was parsed.
-    parses: Arc<Mutex<HashMap<String, u64>>>,
+    parses: Arc<Mutex<HashMap<String, ParseCount>>>,
 }
 
 #[salsa::db]
@@ -142,9 +289,14 @@ impl Db for Database {
     }
 
     fn note_parse(&self, file: SourceFile) {
-        let path = file.path(self).clone();
-        let mut parses = self.parses.lock().unwrap_or_else(|e| e.into_inner());
-        *parses.entry(path).or_default() += 1;
+        self.count(file, |c| {
+            c.parses += 1;
+            c.whole += 1;
+        });
+    }
+
+    fn note_statements(&self, file: SourceFile, statements: usize) {
+        self.count(file, |c| c.statements += statements as u64);
     }
 }
 
@@ -187,7 +339,7 @@ impl Database {
             *next = next.saturating_add(1);
             id
         };
-        SourceFile::new(self, id, path, text.into(), warn_unused)
+        SourceFile::new(self, id, path, FileContents::new(text.into()), warn_unused)
     }
 
     /// Groups files to be checked together, in order.
@@ -204,9 +356,55 @@ impl Database {
     }
 
     /// Replaces a file's text (a new revision: dependent queries re-run on demand).
+    /// Only the part that differs from the old text is parsed again.
     pub fn set_text(&mut self, file: SourceFile, text: impl Into<String>) {
+        let text = text.into();
+        let mut contents = self.take_contents(file);
+        let (start, old_end, new_end) = differing_bytes(&contents.text, &text);
+        contents.text = text;
+        let reparse = contents.edited(file.id(self), start, old_end, new_end);
+        self.put_contents(file, contents, reparse);
+    }
+
+    /// Replaces bytes `range` of a file's text with `inserted` (an editor's range
+    /// edit), re-parsing only the statements it can change. A range past the end or
+    /// inside a character is widened to the characters it touches.
+    pub fn edit(&mut self, file: SourceFile, range: Range<usize>, inserted: &str) {
+        let mut contents = self.take_contents(file);
+        let text = &contents.text;
+        let mut start = range.start.min(text.len());
+        while !text.is_char_boundary(start) {
+            start -= 1;
+        }
+        let mut end = range.end.clamp(start, text.len());
+        while !text.is_char_boundary(end) {
+            end += 1;
+        }
+        let reparse = contents.edit(file.id(self), start, end, inserted);
+        self.put_contents(file, contents, reparse);
+    }
+
+    fn take_contents(&mut self, file: SourceFile) -> FileContents {
         use salsa::Setter;
-        file.set_text(self).to(text.into());
+        file.set_contents(self).to(FileContents::new(String::new()))
+    }
+
+    fn put_contents(&mut self, file: SourceFile, contents: FileContents, reparse: Option<Reparse>) {
+        use salsa::Setter;
+        file.set_contents(self).to(contents);
+        if let Some(r) = reparse {
+            self.count(file, |c| {
+                c.parses += 1;
+                c.whole += u64::from(r.whole);
+                c.statements += r.statements as u64;
+            });
+        }
+    }
+
+    fn count(&self, file: SourceFile, f: impl FnOnce(&mut ParseCount)) {
+        let path = file.path(self).clone();
+        let mut parses = self.parses.lock().unwrap_or_else(|e| e.into_inner());
+        f(parses.entry(path).or_default());
     }
 
     /// Says that files on disk may have changed: checks re-run, parses do not.
@@ -233,9 +431,18 @@ impl Database {
 
     /// How many times each file was parsed so far, by path, sorted by path.
     pub fn parse_counts(&self) -> Vec<(String, u64)> {
+        self.parse_stats()
+            .into_iter()
+            .map(|(p, c)| (p, c.parses))
+            .collect()
+    }
+
+    /// How each file was parsed so far (whole, by statements), by path, sorted by path.
+    pub fn parse_stats(&self) -> Vec<(String, ParseCount)> {
         let parses = self.parses.lock().unwrap_or_else(|e| e.into_inner());
-        let mut counts: Vec<(String, u64)> = parses.iter().map(|(p, n)| (p.clone(), *n)).collect();
-        counts.sort();
+        let mut counts: Vec<(String, ParseCount)> =
+            parses.iter().map(|(p, n)| (p.clone(), *n)).collect();
+        counts.sort_by(|a, b| a.0.cmp(&b.0));
         counts
     }
 

@@ -13,11 +13,12 @@ use chumsky::prelude::*;
 use chumsky::util::MaybeRef;
 
 use super::lexer::{Lexer, Token, TokenKind, unquote};
-use super::reader::{Stopped, read};
+use super::reader::{Outcome, read};
 use super::syntax::{Alias, ArgGroup, Command, Item, Primitive, Real, SceneFile, Word};
 use crate::diagnostic::{self as codes, Code, Diagnostic};
 use crate::schema;
 use crate::source::{FileId, Span};
+use std::ops::ControlFlow;
 
 /// What went wrong, before it becomes a [`Diagnostic`] (which needs the file id).
 #[derive(Clone, Debug, PartialEq)]
@@ -95,22 +96,56 @@ pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
 /// order, and returns every syntax diagnostic. Nothing of the syntax tree is kept, so
 /// a caller that lowers as it goes reads a scene of any size in little memory.
 ///
-/// The fast reader (`reader.rs`) reads statements while they are clean; from the
-/// first one it cannot read, this recovering parser takes over for the rest of the
-/// file, so the result is the same as parsing it all with recovery.
+/// The fast reader (`reader.rs`) reads the statements that are clean; a statement it
+/// cannot read is read by the recovering parser (which resynchronises at the next
+/// line that looks like a statement), then the fast reader goes on. The result is the
+/// same as parsing it all with the recovering parser (property-tested).
 pub fn parse_each(file: FileId, text: &str, visit: &mut dyn FnMut(&Item)) -> Vec<Diagnostic> {
     let mut diagnostics = Vec::new();
-    let Err(Stopped(resume)) = read(file, text, visit, &mut diagnostics) else {
-        return diagnostics;
-    };
-    let (items, more) = parse_recovering(file, text, resume);
-    items.iter().for_each(visit);
-    diagnostics.extend(more);
+    let _ = read_statements(file, text, 0, &mut |item, diags, _| {
+        visit(item);
+        diagnostics.append(diags);
+        ControlFlow::Continue(())
+    });
     diagnostics
+}
+
+/// What [`read_statements`] hands each statement to: the item, its diagnostics, and
+/// for a recovered statement the byte before which its reading looked.
+pub(super) type StatementVisitor<'a> =
+    dyn FnMut(&Item, &mut Vec<Diagnostic>, Option<usize>) -> ControlFlow<()> + 'a;
+
+/// Reads statements from byte `start` (a statement boundary), handing each to
+/// `visit` with its diagnostics (which `visit` may take) and, for a statement the
+/// recovering parser read, the byte before which it looked at the text (see
+/// [`recover_statement`]); a statement the fast reader read looked at the byte after
+/// it. Stops at the end or when `visit` breaks.
+pub(super) fn read_statements(
+    file: FileId,
+    text: &str,
+    mut start: usize,
+    visit: &mut StatementVisitor<'_>,
+) -> ControlFlow<()> {
+    loop {
+        match read(file, text, start, &mut |item, diags| {
+            visit(item, diags, None)
+        }) {
+            Outcome::End => return ControlFlow::Continue(()),
+            Outcome::Halted => return ControlFlow::Break(()),
+            Outcome::Stopped(at) => {
+                let Some((item, mut diags, looked_to)) = recover_statement(file, text, at) else {
+                    return ControlFlow::Continue(());
+                };
+                visit(&item, &mut diags, Some(looked_to))?;
+                start = item.span().end as usize;
+            }
+        }
+    }
 }
 
 /// The recovering parser on the statements from byte `start` (a statement boundary)
 /// to the end, with spans in the whole text.
+#[cfg(test)]
 fn parse_recovering(file: FileId, text: &str, start: usize) -> (Vec<Item>, Vec<Diagnostic>) {
     let tokens: Vec<(Token<'_>, SimpleSpan)> = Lexer::starting_at(text, start)
         .map(|(t, r)| (t, SimpleSpan::from(r)))
@@ -410,7 +445,20 @@ where
     )
 }
 
+#[cfg(test)]
 fn scene_parser<'src, I>() -> impl Parser<'src, I, Vec<Item>, Extra<'src>>
+where
+    I: ValueInput<'src, Token = Token<'src>, Span = SimpleSpan>,
+{
+    recovering_statement()
+        .repeated()
+        .collect()
+        .then_ignore(end())
+}
+
+/// One statement, or (when it cannot be read) an error item up to the next line that
+/// looks like a statement start.
+fn recovering_statement<'src, I>() -> impl Parser<'src, I, Item, Extra<'src>> + Clone
 where
     I: ValueInput<'src, Token = Token<'src>, Span = SimpleSpan>,
 {
@@ -469,12 +517,70 @@ where
     let recovery = any()
         .ignore_then(any().and_is(statement_start().not()).repeated())
         .map_with(|_, e| Item::Error(span_of(e.span())));
-    statement
-        .recover_with(via_parser(recovery))
-        .repeated()
-        .collect()
-        .then_ignore(end())
+    statement.recover_with(via_parser(recovery))
 }
+
+/// The statement at byte `start` (a statement boundary) as the recovering parser
+/// reads it when it gets there parsing the whole file, its diagnostics, and the byte
+/// before which it looked at the text (`usize::MAX`: it looked at the end of the
+/// text). `None` at the end of the text.
+///
+/// The parser is handed a window of tokens, widened until its answer cannot depend on
+/// what comes after the window: the statement ends at least three tokens before the
+/// window's end (recovery looks two tokens past an error item) and no alternative
+/// ran into the window's end (that error would be the furthest, so it would be
+/// reported), or the window reaches the end of the text.
+pub(super) fn recover_statement(
+    file: FileId,
+    text: &str,
+    start: usize,
+) -> Option<(Item, Vec<Diagnostic>, usize)> {
+    let mut lexer = Lexer::starting_at(text, start);
+    let mut tokens: Vec<(Token<'_>, SimpleSpan)> = Vec::new();
+    let mut window = WINDOW;
+    loop {
+        tokens.extend(
+            lexer
+                .by_ref()
+                .take(window - tokens.len())
+                .map(|(t, r)| (t, SimpleSpan::from(r))),
+        );
+        let whole = tokens.len() < window;
+        let first = tokens.first()?;
+        let last_end = tokens.last().map_or(first.1.end, |t| t.1.end);
+        let eoi = if whole {
+            SimpleSpan::from(text.len()..text.len())
+        } else {
+            SimpleSpan::from(last_end..last_end)
+        };
+        let input = tokens.as_slice().map(eoi, |(t, s)| (t, s));
+        let parser = recovering_statement().then_ignore(any().repeated());
+        let (item, errors) = parser.parse(input).into_output_errors();
+        if let Some(mut item) = item {
+            let end = item.span().end as usize;
+            let after = tokens.iter().filter(|t| t.1.start >= end).count();
+            let ran_out = errors
+                .iter()
+                .any(|e| matches!(e.kind, SyntaxErrorKind::Unexpected { found: None }));
+            if whole || (after >= 3 && !ran_out) {
+                set_file(&mut item, file);
+                let diagnostics = errors
+                    .into_iter()
+                    .map(|e| to_diagnostic(file, text, e))
+                    .collect();
+                let looked_to = if whole { usize::MAX } else { last_end + 1 };
+                return Some((item, diagnostics, looked_to));
+            }
+        } else if whole {
+            return None;
+        }
+        window *= 2;
+    }
+}
+
+/// Tokens first handed to [`recover_statement`]'s parser (small in tests, so the
+/// widening is exercised).
+const WINDOW: usize = if cfg!(test) { 8 } else { 64 };
 
 /// The type keyword of a primitive. An unknown type is reported here but parsing goes
 /// on, so its arguments are still read and checked for shape.

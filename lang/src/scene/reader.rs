@@ -20,23 +20,34 @@ use crate::diagnostic::Diagnostic;
 use crate::schema;
 use crate::source::{FileId, Span};
 use chumsky::span::SimpleSpan;
+use std::ops::ControlFlow;
 
-/// The statement the reader could not read cleanly starts after this byte offset
-/// (the end of the last statement it did read).
-pub(super) struct Stopped(pub usize);
+/// How a run of the reader ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Outcome {
+    /// It read every statement to the end of the text.
+    End,
+    /// The statement it could not read cleanly starts after this byte offset (the
+    /// end of the last statement it did read, or where it started).
+    Stopped(usize),
+    /// The visitor asked it to stop after the statement it was handed.
+    Halted,
+}
 
-/// Reads statements from the start of `text`, handing each to `visit` and adding the
-/// diagnostics of the statements it reads to `diags`, until the end or the first
-/// statement it cannot read.
+/// Reads statements from byte `start` of `text` (a statement boundary: the start or
+/// the end of a statement), handing each to `visit` with its diagnostics (which
+/// `visit` may take), until the end, the first statement it cannot read, or `visit`
+/// breaks.
 pub(super) fn read(
     file: FileId,
     text: &str,
-    visit: &mut dyn FnMut(&Item),
-    diags: &mut Vec<Diagnostic>,
-) -> Result<(), Stopped> {
+    start: usize,
+    visit: &mut dyn FnMut(&Item, &mut Vec<Diagnostic>) -> ControlFlow<()>,
+) -> Outcome {
+    let mut diags = Vec::new();
     let mut reader = Reader {
         file,
-        lexer: Lexer::new(text),
+        lexer: Lexer::starting_at(text, start),
         last_type: None,
         errors: Vec::new(),
     };
@@ -45,44 +56,47 @@ pub(super) fn read(
         let resume = reader.lexer.position();
         let statement_lexer = reader.lexer.clone();
         let Some((first, range)) = reader.lexer.next() else {
-            return Ok(());
+            return Outcome::End;
         };
         let span = Span::new(file, range.clone());
-        match first.kind {
-            TokenKind::Comment => {
-                visit(&Item::Comment(span));
-                continue;
-            }
-            TokenKind::Command => {
-                visit(&Item::Command(Command {
+        diags.clear();
+        let flow = match first.kind {
+            TokenKind::Comment => visit(&Item::Comment(span), &mut diags),
+            TokenKind::Command => visit(
+                &Item::Command(Command {
                     text: command_text(first.text),
                     span,
-                }));
-                continue;
+                }),
+                &mut diags,
+            ),
+            TokenKind::Word | TokenKind::Unterminated => {
+                reader.lexer = statement_lexer.clone();
+                if let Some(alias) = reader.alias() {
+                    visit(&Item::Alias(alias), &mut diags)
+                } else {
+                    reader.lexer = statement_lexer;
+                    let mut p = prim.take().unwrap_or_else(|| empty_primitive(file));
+                    reader.errors.clear();
+                    if reader.primitive(&mut p).is_none() {
+                        return Outcome::Stopped(resume);
+                    }
+                    diags.extend(
+                        reader
+                            .errors
+                            .drain(..)
+                            .map(|e| to_diagnostic(file, text, e)),
+                    );
+                    let item = Item::Primitive(p);
+                    let flow = visit(&item, &mut diags);
+                    if let Item::Primitive(p) = item {
+                        prim = Some(p);
+                    }
+                    flow
+                }
             }
-            TokenKind::Word | TokenKind::Unterminated => {}
-        }
-        reader.lexer = statement_lexer.clone();
-        if let Some(alias) = reader.alias() {
-            visit(&Item::Alias(alias));
-            continue;
-        }
-        reader.lexer = statement_lexer;
-        let mut p = prim.take().unwrap_or_else(|| empty_primitive(file));
-        reader.errors.clear();
-        if reader.primitive(&mut p).is_none() {
-            return Err(Stopped(resume));
-        }
-        diags.extend(
-            reader
-                .errors
-                .drain(..)
-                .map(|e| to_diagnostic(file, text, e)),
-        );
-        let item = Item::Primitive(p);
-        visit(&item);
-        if let Item::Primitive(p) = item {
-            prim = Some(p);
+        };
+        if flow.is_break() {
+            return Outcome::Halted;
         }
     }
 }

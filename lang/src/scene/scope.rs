@@ -6,8 +6,10 @@
 //! earlier uses. This works on any syntax tree, including ones with unknown types and
 //! errors, which is what an editor has while someone types.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 
+use super::reparse::{Change, shift};
 use super::syntax::{Item, SceneFile, Word};
 use crate::schema::{self, Category, StringKind};
 use crate::source::Span;
@@ -20,8 +22,9 @@ pub struct Definition {
     pub name_span: Span,
     /// The whole statement.
     pub span: Span,
-    /// The type keyword as written (`alias` for aliases).
-    pub type_name: String,
+    /// The type keyword as written (`alias` for aliases); a known type's name is the
+    /// schema's, not a copy (the scope of a big scene is rebuilt after each edit).
+    pub type_name: Cow<'static, str>,
     /// Whether later primitives may use it as a modifier (surfaces cannot; unknown
     /// types are given the benefit of the doubt).
     pub is_modifier: bool,
@@ -44,9 +47,16 @@ pub struct ModifierScope {
 
 impl ModifierScope {
     pub fn new(file: &SceneFile) -> Self {
-        let mut scope = ModifierScope::default();
-        let mut bound: HashMap<String, usize> = HashMap::new();
-        for item in &file.items {
+        Self::of(&file.items)
+    }
+
+    fn of(items: &[Item]) -> Self {
+        let mut scope = ModifierScope {
+            definitions: Vec::with_capacity(items.len()),
+            references: Vec::with_capacity(items.len()),
+        };
+        let mut bound: HashMap<&str, usize> = HashMap::new();
+        for item in items {
             match item {
                 Item::Primitive(p) => {
                     scope.reference(&p.modifier, &bound);
@@ -60,12 +70,16 @@ impl ModifierScope {
                         }
                     }
                     let is_modifier = ty.is_none_or(|t| t.category != Category::Surface);
-                    scope.define(&p.name, p.span, &p.kind.text, is_modifier, &mut bound);
+                    let type_name = match ty {
+                        Some(t) => Cow::Borrowed(t.name),
+                        None => Cow::Owned(p.kind.text.clone()),
+                    };
+                    scope.define(&p.name, p.span, type_name, is_modifier, &mut bound);
                 }
                 Item::Alias(a) => {
                     scope.reference(&a.modifier, &bound);
                     scope.reference(&a.target, &bound);
-                    scope.define(&a.name, a.span, "alias", true, &mut bound);
+                    scope.define(&a.name, a.span, Cow::Borrowed("alias"), true, &mut bound);
                 }
                 Item::Command(_) | Item::Comment(_) | Item::Error(_) => {}
             }
@@ -73,36 +87,94 @@ impl ModifierScope {
         scope
     }
 
-    fn reference(&mut self, word: &Word, bound: &HashMap<String, usize>) {
+    fn reference(&mut self, word: &Word, bound: &HashMap<&str, usize>) {
         if matches!(word.text.as_str(), "void" | "inherit") {
             return;
         }
         self.references.push(Reference {
             name: word.text.clone(),
             span: word.span,
-            target: bound.get(&word.text).copied(),
+            target: bound.get(word.text.as_str()).copied(),
         });
     }
 
-    fn define(
+    fn define<'a>(
         &mut self,
-        name: &Word,
+        name: &'a Word,
         span: Span,
-        type_name: &str,
+        type_name: Cow<'static, str>,
         is_modifier: bool,
-        bound: &mut HashMap<String, usize>,
+        bound: &mut HashMap<&'a str, usize>,
     ) {
         let index = self.definitions.len();
         self.definitions.push(Definition {
             name: name.text.clone(),
             name_span: name.span,
             span,
-            type_name: type_name.to_string(),
+            type_name,
             is_modifier,
         });
         if is_modifier {
-            bound.insert(name.text.clone(), index);
+            bound.insert(&name.text, index);
         }
+    }
+
+    /// Brings the scope up to date after an edit of the file (now `file`) that
+    /// replaced some statements (`change`), when the new statements define and refer
+    /// to the same names in the same order as the old ones (editing a number, say):
+    /// then only spans move. Returns `false` (the scope is left as it was) when
+    /// names changed, and it must be built again. The result is exactly
+    /// `ModifierScope::new(file)` (tested with the random edits in `db`).
+    pub fn edited(&mut self, file: &SceneFile, change: &Change) -> bool {
+        let Some(window) = file.items.get(change.items.clone()) else {
+            return false;
+        };
+        let new = ModifierScope::of(window);
+        let replaced = |s: &Span| s.start >= change.old_start && s.start <= change.old_end;
+        let d0 = self
+            .definitions
+            .partition_point(|d| d.span.start < change.old_start);
+        let d1 = d0 + self.definitions[d0..].partition_point(|d| replaced(&d.span));
+        let r0 = self
+            .references
+            .partition_point(|r| r.span.start < change.old_start);
+        let r1 = r0 + self.references[r0..].partition_point(|r| replaced(&r.span));
+        let (old_defs, old_refs) = (&self.definitions[d0..d1], &self.references[r0..r1]);
+        if old_defs.len() != new.definitions.len() || old_refs.len() != new.references.len() {
+            return false;
+        }
+        let same_defs = old_defs.iter().zip(&new.definitions).all(|(a, b)| {
+            a.name == b.name && a.type_name == b.type_name && a.is_modifier == b.is_modifier
+        });
+        // Each reference is inside the statement of one definition: which one, and
+        // its name, decide what it binds to.
+        let owner = |defs: &[Definition], r: &Reference| {
+            defs.partition_point(|d| d.span.start <= r.span.start)
+        };
+        let same_refs = old_refs
+            .iter()
+            .zip(&new.references)
+            .all(|(a, b)| a.name == b.name && owner(old_defs, a) == owner(&new.definitions, b));
+        if !same_defs || !same_refs {
+            return false;
+        }
+        for (old, new) in self.definitions[d0..d1].iter_mut().zip(&new.definitions) {
+            old.name_span = new.name_span;
+            old.span = new.span;
+        }
+        for (old, new) in self.references[r0..r1].iter_mut().zip(&new.references) {
+            old.span = new.span;
+        }
+        if change.delta != 0 {
+            for d in &mut self.definitions[d1..] {
+                shift(&mut d.name_span, change.delta);
+                shift(&mut d.span, change.delta);
+            }
+            for r in &mut self.references[r1..] {
+                shift(&mut r.span, change.delta);
+            }
+        }
+        true
     }
 
     /// The definition named or referred to by the word at byte `offset`.

@@ -13,7 +13,7 @@ pub fn symbols(doc: &Document<'_>) -> Vec<DocumentSymbol> {
             #[allow(deprecated)] // `deprecated` is a required field of the struct.
             DocumentSymbol {
                 name: d.name.clone(),
-                detail: Some(d.type_name.clone()),
+                detail: Some(d.type_name.to_string()),
                 kind: kind(&d.type_name),
                 tags: None,
                 deprecated: None,
