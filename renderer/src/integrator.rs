@@ -544,13 +544,18 @@ impl<'a> Tracer<'a> {
     /// beats a back face, then the later modifier wins.
     fn nearest(&self, ray: &Ray, limit: f64) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
-        self.scene.bvh.traverse(ray, limit + FTINY, |i| {
-            if let Some(o) = self.scene.object(i)
-                && let Some(h) = o.shape.intersect(ray)
+        let scene = self.scene;
+        scene.bvh.traverse(ray, limit + FTINY, |slot| {
+            // Farther hits are rejected whatever they are (`rejects`): the shape need
+            // not finish testing them.
+            let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
+            if let Some(object) = scene.bvh.primitive(slot)
+                && let Some(o) = scene.object(object)
+                && let Some(h) = o.shape.intersect_within(ray, tmax)
                 && h.t <= limit + FTINY
             {
                 let cand = Candidate {
-                    object: i,
+                    object,
                     t: h.t,
                     normal: h.normal,
                     rod: h.rod,

@@ -34,6 +34,16 @@ impl Shape {
         }
     }
 
+    /// `intersect` for hits no farther than `tmax`.
+    pub fn intersect_within(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect_within(ray, tmax),
+            Shape::Polygon(p) => p.intersect_within(ray, tmax),
+            Shape::Ring(r) => r.intersect(ray).filter(|h| h.t <= tmax),
+            Shape::Cone(c) => c.intersect(ray).filter(|h| h.t <= tmax),
+        }
+    }
+
     pub fn bounds(&self) -> Bounds {
         match self {
             Shape::Sphere(s) => s.bounds(),
