@@ -549,13 +549,12 @@ impl<'a> Tracer<'a> {
             // Farther hits are rejected whatever they are (`rejects`): the shape need
             // not finish testing them.
             let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
-            if let Some(object) = scene.bvh.primitive(slot)
-                && let Some(o) = scene.object(object)
-                && let Some(h) = o.shape.intersect_within(ray, tmax)
+            if let Some(s) = scene.surfaces.get(slot as usize)
+                && let Some(h) = s.intersect(&scene.objects, ray, tmax)
                 && h.t <= limit + FTINY
             {
                 let cand = Candidate {
-                    object,
+                    object: s.object,
                     t: h.t,
                     normal: h.normal,
                     rod: h.rod,

@@ -16,6 +16,7 @@ use crate::materials::mist::Mist;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
+use crate::surfaces::Surface;
 
 /// A surface.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -51,6 +52,10 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub sources: Vec<Source>,
     pub bvh: Bvh,
+    /// The BVH's leaf slots' geometry, derived from `objects` and `bvh`
+    /// ([`Scene::pack_surfaces`]).
+    #[serde(skip)]
+    pub surfaces: Vec<Surface>,
 }
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
@@ -109,7 +114,14 @@ impl Scene {
         scene.sources = sources;
         let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
         scene.bvh = Bvh::build(&bounds);
+        scene.pack_surfaces();
         Ok(scene)
+    }
+
+    /// Lays out the surfaces in BVH order for traversal (after the BVH was built or
+    /// loaded).
+    pub fn pack_surfaces(&mut self) {
+        self.surfaces = crate::surfaces::pack(&self.objects, &self.bvh);
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file

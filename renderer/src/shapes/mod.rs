@@ -5,11 +5,13 @@ pub mod cone;
 pub mod polygon;
 pub mod ring;
 pub mod sphere;
+pub mod triangle;
 
 pub use cone::Cone;
 pub use polygon::Polygon;
 pub use ring::Ring;
 pub use sphere::Sphere;
+pub use triangle::Triangle;
 
 use crate::math::{Bounds, FTINY};
 use crate::ray::{Ray, ShapeHit};

@@ -168,6 +168,11 @@ impl Polygon {
         odd
     }
 
+    /// The axis the inside test drops, for the triangle fast path.
+    pub(crate) fn axis(&self) -> usize {
+        self.axis
+    }
+
     pub fn centroid(&self) -> Vec3 {
         self.center
     }
