@@ -549,12 +549,11 @@ impl<'a> Tracer<'a> {
             // Farther hits are rejected whatever they are (`rejects`): the shape need
             // not finish testing them.
             let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
-            if let Some(s) = scene.surfaces.get(slot as usize)
-                && let Some(h) = s.intersect(&scene.objects, ray, tmax)
+            if let Some((object, h)) = scene.surfaces.intersect(slot, &scene.objects, ray, tmax)
                 && h.t <= limit + FTINY
             {
                 let cand = Candidate {
-                    object: s.object,
+                    object,
                     t: h.t,
                     normal: h.normal,
                     rod: h.rod,

@@ -16,7 +16,7 @@ use crate::materials::mist::Mist;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
-use crate::surfaces::Surface;
+use crate::surfaces::Surfaces;
 
 /// A surface.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -55,7 +55,7 @@ pub struct Scene {
     /// The BVH's leaf slots' geometry, derived from `objects` and `bvh`
     /// ([`Scene::pack_surfaces`]).
     #[serde(skip)]
-    pub surfaces: Vec<Surface>,
+    pub surfaces: Surfaces,
 }
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
@@ -121,7 +121,7 @@ impl Scene {
     /// Lays out the surfaces in BVH order for traversal (after the BVH was built or
     /// loaded).
     pub fn pack_surfaces(&mut self) {
-        self.surfaces = crate::surfaces::pack(&self.objects, &self.bvh);
+        self.surfaces = Surfaces::pack(&self.objects, &self.bvh);
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
