@@ -18,7 +18,7 @@ const SAH_DEPTH: u32 = 32;
 /// Traversal stack entries kept in a fixed array; deeper trees spill to the heap (tests
 /// use a short array, so that they reach the spill).
 #[cfg(not(test))]
-const STACK: usize = 48;
+const STACK: usize = 32;
 #[cfg(test)]
 const STACK: usize = 3;
 

@@ -103,8 +103,11 @@ fn fast_exp(x: f64, buf: &mut [u8; 40]) -> Option<usize> {
     if !(1e-15..1e19).contains(&a) {
         return None;
     }
-    let mut e = a.log10().floor() as i32;
-    for _ in 0..3 {
+    // floor(log10 a) within one, from the binary exponent (no libm calls: without
+    // SSE4.1, floor and round are function calls).
+    let binary = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let mut e = (binary * 78_913) >> 18;
+    for _ in 0..4 {
         let k = 6 - e;
         let p = *POW10.get(k.unsigned_abs() as usize)?;
         let s = if k >= 0 { a * p } else { a / p };
@@ -116,10 +119,13 @@ fn fast_exp(x: f64, buf: &mut [u8; 40]) -> Option<usize> {
             e -= 1;
             continue;
         }
-        if (s - s.floor() - 0.5).abs() < 1e-6 {
+        // 1e6 <= s < 1e7: the truncation is exact.
+        let whole = s as u32;
+        let fraction = s - f64::from(whole);
+        if (fraction - 0.5).abs() < 1e-6 {
             return None;
         }
-        let mut n = s.round() as u32;
+        let mut n = whole + u32::from(fraction > 0.5);
         if n >= 10_000_000 {
             n /= 10;
             e += 1;
