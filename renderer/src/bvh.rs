@@ -233,7 +233,7 @@ impl Bvh {
 
     /// Visits every leaf slot whose box the ray enters before `limit`, nearer boxes
     /// first. `visit` tests the primitive in one slot ([`Bvh::primitive`]) and returns
-    /// the new limit (which may only shrink).
+    /// the new limit (which may only shrink; a negative one ends the traversal).
     ///
     /// Both children's boxes are tested at their parent, and only those the ray enters
     /// are pushed, the farther first, with their entry distance: a popped node whose
@@ -274,6 +274,9 @@ impl Bvh {
             if link.count > 0 {
                 for slot in link.first..link.first + link.count {
                     limit = limit.min(visit(slot));
+                    if limit < 0.0 {
+                        return;
+                    }
                 }
                 continue;
             }

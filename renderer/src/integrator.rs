@@ -567,6 +567,20 @@ impl<'a> Tracer<'a> {
         best
     }
 
+    /// Whether `ray` hits any surface (`nearest` would find one): stops at the first.
+    fn hits_anything(&self, ray: &Ray) -> bool {
+        let mut hit = false;
+        let scene = self.scene;
+        scene.bvh.traverse(ray, f64::INFINITY, |slot| {
+            hit = scene
+                .surfaces
+                .intersect(slot, &scene.objects, ray, f64::INFINITY)
+                .is_some();
+            if hit { -1.0 } else { f64::INFINITY }
+        });
+        hit
+    }
+
     fn rejects(&self, best: Option<&Candidate>, new: &Candidate) -> bool {
         let Some(old) = best else {
             return new.t <= FTINY;
@@ -705,6 +719,11 @@ impl<'a> Tracer<'a> {
             // The source's own value, from the source surface alone (`srcvalue`).
             Some(self.source_value(&sr, si)? * c)
         };
+        if self.scene.opaque_to_shadows && matches!(source.target, SourceTarget::Distant(_)) {
+            // Whatever it hits shades it black (`Scene::opaque_to_shadows`), and the
+            // distant source is no surface: the first hit found decides.
+            return (!self.hits_anything(&Ray::new(sr.org, sr.dir))).then_some(value?);
+        }
         match self.nearest(&Ray::new(sr.org, sr.dir), f64::INFINITY) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,

@@ -56,6 +56,12 @@ pub struct Scene {
     /// ([`Scene::pack_surfaces`]).
     #[serde(skip)]
     pub surfaces: Surfaces,
+    /// Every surface has a plastic or metal material with no transmission, which shades
+    /// shadow rays black whatever else holds (and without antimatter no ray passes a
+    /// surface): a shadow ray toward a distant source is blocked by anything it hits,
+    /// so only whether it hits anything matters. Derived with `surfaces`.
+    #[serde(skip)]
+    pub opaque_to_shadows: bool,
 }
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
@@ -122,6 +128,12 @@ impl Scene {
     /// loaded).
     pub fn pack_surfaces(&mut self) {
         self.surfaces = Surfaces::pack(&self.objects, &self.bvh);
+        self.opaque_to_shadows = self.objects.iter().all(|o| {
+            matches!(
+                o.material.and_then(|m| self.material(m)),
+                Some(Material::Normal(n)) if n.transmission.is_none()
+            )
+        });
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
