@@ -676,6 +676,45 @@ pub(crate) mod tests {
         assert_eq!(scene.sources.len(), 1);
     }
 
+    /// Shadow rays may stop at their first hit only when every surface shades them
+    /// black: plastic alone, not with a glass pane or a lamp among the surfaces.
+    #[test]
+    fn opaque_to_shadows_only_without_transparent_or_emitting_surfaces() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        b.square("floor", grey, 0.0, true);
+        assert!(
+            Scene::compile(&b.scene)
+                .expect("compiles")
+                .opaque_to_shadows
+        );
+        let pane = b.add(
+            "glass",
+            "pane",
+            None,
+            PrimKind::Glass {
+                transmission: [0.9; 3],
+                index: 1.52,
+            },
+        );
+        b.square("window", pane, 1.0, true);
+        assert!(
+            !Scene::compile(&b.scene)
+                .expect("compiles")
+                .opaque_to_shadows
+        );
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        b.square("floor", grey, 0.0, true);
+        b.square("panel", lamp, 2.0, false);
+        assert!(
+            !Scene::compile(&b.scene)
+                .expect("compiles")
+                .opaque_to_shadows
+        );
+    }
+
     #[test]
     fn unsupported_types_are_listed_not_dropped() {
         let mut b = IrBuilder::default();
