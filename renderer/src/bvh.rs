@@ -90,6 +90,7 @@ impl Slabs {
     /// whether it does before `limit`. Both children in lockstep, so that the compiler
     /// can keep them in the two lanes of one vector.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // The axis indexes four arrays at once.
     fn entries(&self, b: &[[[f32; 2]; 3]; 2], limit: f64) -> ([f64; 2], [bool; 2]) {
         let (mut t0, mut t1) = ([0.0f64; 2], [limit; 2]);
         for a in 0..3 {
@@ -217,11 +218,10 @@ impl Bvh {
                 self.nodes.push(Node::default());
                 let child = [self.flatten(l), self.flatten(r)];
                 let (lb, rb) = (l.bounds(), r.bounds());
-                let mut bounds = [[[0f32; 2]; 3]; 2];
-                for a in 0..3 {
-                    bounds[0][a] = [f32_down(lb.min[a]), f32_down(rb.min[a])];
-                    bounds[1][a] = [f32_up(lb.max[a]), f32_up(rb.max[a])];
-                }
+                let bounds = [
+                    std::array::from_fn(|a| [f32_down(lb.min[a]), f32_down(rb.min[a])]),
+                    std::array::from_fn(|a| [f32_up(lb.max[a]), f32_up(rb.max[a])]),
+                ];
                 self.nodes[at] = Node { bounds, child };
                 Link {
                     first: at as u32,
