@@ -16,20 +16,10 @@ BENCHMARKS.md, section "radc calc vs rcalc".
 """
 import argparse, os, resource, shutil, subprocess, sys, tempfile, time
 
+from radiance import radiance_env
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXPR = "f(x,y) = if(x-y, sqrt(x*x + y*y) * sin(x) * cos(y), exp(-x*y/100)); $1 = f($1, $2)"
-
-
-def oracle_env():
-    env = dict(os.environ)
-    py = os.path.join(ROOT, ".oracle", "bin", "python")
-    if os.path.exists(py):
-        lib = subprocess.check_output(
-            [py, "-c", "import pyradiance, os; print(os.path.dirname(pyradiance.__file__))"],
-            text=True).strip()
-        env["PATH"] = os.path.join(lib, "bin") + os.pathsep + env["PATH"]
-        env["RAYPATH"] = "." + os.pathsep + os.path.join(lib, "lib")
-    return env
 
 
 def timed(cmd, stdin_path, out_path, env):
@@ -53,7 +43,7 @@ def main():
     if not args.no_build:
         subprocess.check_call(["cargo", "build", "--release", "--quiet", "--bin", "radc"], cwd=ROOT)
     radc = os.path.join(ROOT, "target", "release", "radc")
-    env = oracle_env()
+    env = radiance_env("rcalc")
     rcalc = shutil.which("rcalc", path=env["PATH"])
     work = tempfile.mkdtemp()
     try:

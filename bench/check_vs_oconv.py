@@ -36,25 +36,10 @@ import tempfile
 import time
 from pathlib import Path
 
+from radiance import radiance_env
+
 ROOT = Path(__file__).resolve().parent.parent
 MATERIAL = "void plastic mat 0 0 5 .5 .5 .5 0 0\n"
-
-
-def radiance_env():
-    """PATH and RAYPATH with Radiance on them (the oracle venv, unless already there)."""
-    env = dict(os.environ)
-    if shutil.which("oconv") and shutil.which("gensurf"):
-        return env
-    py = ROOT / ".oracle" / "bin" / "python"
-    if not py.exists():
-        sys.exit("Radiance not found: run `bash tests/oracle/install.sh` (or put oconv on PATH)")
-    pkg = subprocess.check_output(
-        [str(py), "-c", "import pyradiance, os; print(os.path.dirname(pyradiance.__file__))"],
-        text=True,
-    ).strip()
-    env["PATH"] = f"{pkg}/bin{os.pathsep}{env.get('PATH', '')}"
-    env["RAYPATH"] = f".{os.pathsep}{pkg}/lib"
-    return env
 
 
 def run_text(cmd, env, cwd):
@@ -159,7 +144,7 @@ def main():
 
     if not os.access(GNU_TIME, os.X_OK):
         sys.exit("GNU time is needed for peak memory: apt-get install time")
-    env = radiance_env()
+    env = radiance_env("oconv", "gensurf")
     if not (args.no_build or args.radc):
         subprocess.run(["cargo", "build", "--release", "-q", "-p", "radc"], cwd=ROOT, check=True)
     radc = Path(args.radc).resolve() if args.radc else ROOT / "target" / "release" / "radc"

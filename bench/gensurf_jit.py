@@ -25,6 +25,8 @@ import sys
 import tempfile
 import time
 
+from radiance import radiance_env
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 SHEET_CAL = """\
@@ -42,17 +44,6 @@ SURFACES = {
     "terrain": ["m", "terrain", "s+.1*wave(9*t,16)", "t+.1*wave(8*s,16)", "ridge(s,t)",
                 "-f", "sheet.cal"],
 }
-
-
-def oracle_env():
-    env = dict(os.environ)
-    lib = subprocess.run(
-        [os.path.join(ROOT, ".oracle/bin/python"), "-c",
-         "import pyradiance, os; print(os.path.dirname(pyradiance.__file__))"],
-        capture_output=True, text=True, check=True).stdout.strip()
-    env["PATH"] = os.path.join(lib, "bin") + os.pathsep + env["PATH"]
-    env["RAYPATH"] = "." + os.pathsep + os.path.join(lib, "lib")
-    return env
 
 
 def best_run(cmd, cwd, env, runs):
@@ -86,7 +77,7 @@ def main():
     a.before = a.before and os.path.abspath(a.before)
     if not os.path.exists(a.radc):
         sys.exit("build radc first: cargo build --release --bin radc")
-    env = oracle_env()
+    env = radiance_env("gensurf")
     failed = False
     with tempfile.TemporaryDirectory() as tmp:
         with open(os.path.join(tmp, "sheet.cal"), "w") as f:

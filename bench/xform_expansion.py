@@ -18,18 +18,9 @@ import sys
 import tempfile
 import time
 
+from radiance import radiance_env
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-
-def oracle_env():
-    env = dict(os.environ)
-    lib = subprocess.run(
-        [os.path.join(ROOT, ".oracle/bin/python"), "-c",
-         "import pyradiance, os; print(os.path.dirname(pyradiance.__file__))"],
-        capture_output=True, text=True, check=True).stdout.strip()
-    env["PATH"] = os.path.join(lib, "bin") + os.pathsep + env["PATH"]
-    env["RAYPATH"] = "." + os.pathsep + os.path.join(lib, "lib")
-    return env
 
 
 def best_time(cmd, cwd, env, runs):
@@ -51,7 +42,7 @@ def main():
     radc = os.path.join(ROOT, "target/release/radc")
     if not os.path.exists(radc):
         sys.exit("build radc first: cargo build --release")
-    env = oracle_env()
+    env = radiance_env("xform")
     with tempfile.TemporaryDirectory() as tmp:
         with open(os.path.join(tmp, "chair.rad"), "w") as f:
             f.write(subprocess.run(["genbox", "wood", "seat", ".5", ".5", ".05"],

@@ -48,15 +48,7 @@ fn normal(z0: f64, r0: f64, z1: f64, r1: f64) -> (f64, f64) {
 /// On failure (a calcomp error at some point of the curve), what was written up to
 /// there, as the C program leaves it on standard output.
 pub fn genrev(args: &[String], host: &mut dyn Host) -> Result<String, crate::Failure> {
-    let mut out = String::new();
-    match write(args, host, &mut out) {
-        Ok(()) => Ok(out),
-        Err(error) => Err(crate::Failure {
-            program: "genrev".into(),
-            partial: out,
-            error,
-        }),
-    }
+    crate::Failure::keeping_partial("genrev", |out| write(args, host, out))
 }
 
 fn write(args: &[String], host: &mut dyn Host, out: &mut String) -> Result<(), GenError> {

@@ -57,15 +57,7 @@ enum Source {
 /// On failure (a calcomp error at some point of the curve), what was written up to
 /// there, as the C program leaves it on standard output.
 pub fn gensurf(args: &[String], host: &mut dyn Host) -> Result<String, crate::Failure> {
-    let mut out = String::new();
-    match write(args, host, &mut out) {
-        Ok(()) => Ok(out),
-        Err(error) => Err(crate::Failure {
-            program: "gensurf".into(),
-            partial: out,
-            error,
-        }),
-    }
+    crate::Failure::keeping_partial("gensurf", |out| write(args, host, out))
 }
 
 fn write(args: &[String], host: &mut dyn Host, out: &mut String) -> Result<(), GenError> {

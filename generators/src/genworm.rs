@@ -19,15 +19,7 @@ const FTINY: f64 = 1e-6;
 /// On failure (a calcomp error at some point of the curve), what was written up to
 /// there, as the C program leaves it on standard output.
 pub fn genworm(args: &[String], host: &mut dyn Host) -> Result<String, crate::Failure> {
-    let mut out = String::new();
-    match write(args, host, &mut out) {
-        Ok(()) => Ok(out),
-        Err(error) => Err(crate::Failure {
-            program: "genworm".into(),
-            partial: out,
-            error,
-        }),
-    }
+    crate::Failure::keeping_partial("genworm", |out| write(args, host, out))
 }
 
 fn write(args: &[String], host: &mut dyn Host, out: &mut String) -> Result<(), GenError> {

@@ -128,6 +128,23 @@ impl Failure {
         }
     }
 
+    /// Runs `write` (a generator writing into a buffer as the C program writes to
+    /// standard output) and keeps what it wrote before failing.
+    pub(crate) fn keeping_partial(
+        program: &str,
+        write: impl FnOnce(&mut String) -> Result<(), GenError>,
+    ) -> Result<String, Failure> {
+        let mut out = String::new();
+        match write(&mut out) {
+            Ok(()) => Ok(out),
+            Err(error) => Err(Failure {
+                program: program.to_string(),
+                partial: out,
+                error,
+            }),
+        }
+    }
+
     /// [`GenError::radiance_message`] for the program that failed.
     pub fn radiance_message(&self) -> String {
         self.error.radiance_message(&self.program)

@@ -359,15 +359,7 @@ pub(crate) fn nested(
         stdin_taken: false,
         depth,
     };
-    let mut out = String::new();
-    match run.main(args, &mut out) {
-        Ok(()) => Ok(out),
-        Err(error) => Err(Failure {
-            program: "xform".into(),
-            partial: out,
-            error,
-        }),
-    }
+    Failure::keeping_partial("xform", |out| run.main(args, out))
 }
 
 /// The words of one argument-file line as xform splits them: an optional leading `!`

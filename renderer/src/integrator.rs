@@ -77,6 +77,11 @@ pub struct Options {
     /// `-dj`: source jitter, 0 (sample points at partition centres) to 1 (anywhere in
     /// the partition).
     pub source_jitter: f64,
+    /// `-dx+` (radc's own): sample convex polygon, disk, sphere and distant sources
+    /// with each partition's exact solid angle, so that a fully visible source lights a
+    /// Lambertian surface exactly (`lights::Source::exact_samples`). Off, samples are
+    /// Radiance's partition centres and agree with rtrace.
+    pub exact_sources: bool,
     /// Rays below `-lw` play Russian roulette when `-lr` is not positive (Radiance's
     /// `rayorigin`). Off, they are dropped, which keeps `-ab 0 -dj 0` deterministic.
     pub russian_roulette: bool,
@@ -108,6 +113,7 @@ impl Default for Options {
             ambient_divisions: 1024,
             ambient_supersamples: 512,
             source_jitter: 0.0,
+            exact_sources: false,
             russian_roulette: false,
         }
     }
@@ -681,6 +687,7 @@ impl<'a> Tracer<'a> {
                 r.weight,
                 self.options.source_size_ratio,
                 jitter,
+                self.options.exact_sources,
                 &mut samples,
             );
             for sample in &samples {

@@ -94,6 +94,12 @@ pub fn looks_compiled(head: &[u8]) -> bool {
 pub fn encode(scene: &Scene) -> Result<Vec<u8>, SceneFileError> {
     let payload =
         postcard::to_stdvec(scene).map_err(|e| SceneFileError::Encode { why: e.to_string() })?;
+    frame(&payload)
+}
+
+/// A file around an already encoded `payload`: this build's header, its length and
+/// checksum. Public so that the fuzzer can reach the decoder past the checksum.
+pub fn frame(payload: &[u8]) -> Result<Vec<u8>, SceneFileError> {
     let version = RADC_VERSION.as_bytes();
     let version_len = u8::try_from(version.len()).map_err(|_| SceneFileError::Encode {
         why: "version string too long".into(),
@@ -104,8 +110,8 @@ pub fn encode(scene: &Scene) -> Result<Vec<u8>, SceneFileError> {
     out.push(version_len);
     out.extend_from_slice(version);
     out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-    out.extend_from_slice(&crc32fast::hash(&payload).to_le_bytes());
-    out.extend_from_slice(&payload);
+    out.extend_from_slice(&crc32fast::hash(payload).to_le_bytes());
+    out.extend_from_slice(payload);
     Ok(out)
 }
 
@@ -352,10 +358,7 @@ mod tests {
         for at in 0..payload.len().min(600) {
             let mut p = payload.to_vec();
             p[at] = p[at].wrapping_add(0x41);
-            let mut file = bytes[..header - 12].to_vec();
-            file.extend_from_slice(&(p.len() as u64).to_le_bytes());
-            file.extend_from_slice(&crc32fast::hash(&p).to_le_bytes());
-            file.extend_from_slice(&p);
+            let file = frame(&p).expect("frames");
             if let Ok(s) = decode(&file) {
                 // Decoded: tracing it must still be safe.
                 let t = Tracer::new(&s, Options::default());

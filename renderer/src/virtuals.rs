@@ -146,6 +146,8 @@ fn reflect_shape(m: &MirrorPlane, shape: &SourceShape) -> SourceShape {
             u,
             v,
             circular,
+            parallelogram,
+            convex_outline,
             radius,
         } => {
             let mut n = m.vector(*normal);
@@ -157,6 +159,8 @@ fn reflect_shape(m: &MirrorPlane, shape: &SourceShape) -> SourceShape {
                 u: m.vector(*u),
                 v: m.vector(*v),
                 circular: *circular,
+                parallelogram: *parallelogram,
+                convex_outline: convex_outline.iter().map(|p| m.point(*p)).collect(),
                 radius: *radius,
             }
         }

@@ -164,22 +164,7 @@ fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
     let Some(text) = sources.get(file).map(|s| s.text.as_str()) else {
         return;
     };
-    // A file is either for the renderer (ray variables, rayinit.cal) or for rcalc and
-    // the generators (`$N`, `Px(i)` user functions are fine there): judge it as the
-    // one it fits, preferring the renderer.
-    let errors = |d: &Vec<Diagnostic>| d.iter().filter(|d| d.is_error()).count();
-    let renderer = radc_lang::cal::check(file, text, &radc_lang::cal::Env::renderer());
-    let found = if errors(&renderer) > 0 {
-        let rcalc = radc_lang::cal::check(file, text, &radc_lang::cal::Env::rcalc());
-        if errors(&rcalc) < errors(&renderer) {
-            rcalc
-        } else {
-            renderer
-        }
-    } else {
-        renderer
-    };
-    diags.extend(found);
+    diags.extend(radc_lang::cal::check::check_file(file, text));
 }
 
 /// Reads, parses and lowers `paths` in order as one scene. Each file streams from the

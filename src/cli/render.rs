@@ -19,7 +19,7 @@ use super::USAGE_ERROR;
 use super::trace::{load_scene, number, render_option};
 
 const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
-[-vv deg] [-x res] [-y res] [-pa aspect] [-ab N] [-ad N] [-as N] [-av r g b] [-dj frac] [-e errfile] \
+[-vv deg] [-x res] [-y res] [-pa aspect] [-ab N] [-ad N] [-as N] [-av r g b] [-dj frac] [-dx+] [-e errfile] \
 [-o picture.hdr|x.png]... scene.rad...|scene.rsc";
 
 struct Args {

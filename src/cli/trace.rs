@@ -22,7 +22,7 @@ use super::ray_text::{c_exp_into, is_space, radiance_number};
 use super::report::{self, Sources};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
-[-ds f] [-dj f] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
+[-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
 
 /// Rays evaluated together (in parallel) between writes.
 const BATCH: usize = 4096;
@@ -293,6 +293,7 @@ pub(super) fn render_option<'a>(
             it.next().ok_or_else(|| format!("{arg} needs a value"))?;
         }
         s if switch(s, "-dv", &mut o.direct_visible) => {}
+        s if switch(s, "-dx", &mut o.exact_sources) => {}
         s if s.starts_with("-u") => {}
         _ => return Ok(false),
     }

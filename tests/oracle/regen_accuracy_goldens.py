@@ -11,6 +11,7 @@ precision.
 
     python tests/oracle/regen_accuracy_goldens.py           # rewrite the goldens
     python tests/oracle/regen_accuracy_goldens.py --check   # fail if any would change
+    python tests/oracle/regen_accuracy_goldens.py --only a,b  # rewrite only these cases
 """
 
 import json
@@ -31,6 +32,16 @@ DISK = "void light lamp 0 0 3 40 40 40\nlamp ring disk 0 0 8 0 0 2 0 0 -1 0 1\n"
 RECT = (
     "void light panel 0 0 3 25 25 25\n"
     "panel polygon rect 0 0 12 0 0 1.5 0 2 1.5 3 2 1.5 3 0 1.5\n"
+)
+# The same sources half hidden by an opaque black plane between them and the point: at
+# z = .75 beyond x = .65 for the rectangle (its shadow edge falls at x = 1.3 on the
+# lamp, inside a partition), at z = 1 beyond x = .25 for the disk (a chord at x = .5).
+BLACK = "void plastic black 0 0 5 0 0 0 0 0\n"
+RECT_OCCLUDED = RECT + BLACK + "black polygon blind 0 0 12 .65 -3 .75 5 -3 .75 5 5 .75 .65 5 .75\n"
+DISK_OCCLUDED = DISK + BLACK + "black polygon blind 0 0 12 .25 -3 1 5 -3 1 5 5 1 .25 5 1\n"
+TRIANGLE = (
+    "void light panel 0 0 3 25 25 25\n"
+    "panel polygon tri 0 0 9 0 0 1.5 0 2 1.5 3 0 1.5\n"
 )
 GLOW_DOME = (
     "void glow sky 0 0 4 2 2 2 0\n"
@@ -69,11 +80,31 @@ def cases():
         dict(id="sphere-below", scene=SPHERE, options=["-ab", "0"], rays=[[0, 0, 0, 0, 0, 1]]),
         dict(id="sphere-off-axis", scene=SPHERE, options=["-ab", "0"],
              rays=[[0, 0, 0, s30[0], 0, s30[1]]]),
+        # Tilted 87 degrees: the horizon cuts the lamp's cone (half-angle 5.7 degrees).
+        dict(id="sphere-horizon", scene=SPHERE, options=["-ab", "0", "-ds", ".05"],
+             rays=[[0, 0, 0, math.sin(math.radians(87)), 0, math.cos(math.radians(87))]]),
+        dict(id="sphere-horizon-jitter", scene=SPHERE,
+             options=["-ab", "0", "-ds", ".05", "-dj", "1", "-u-"],
+             rays=[[0, 0, 0, math.sin(math.radians(87)), 0, math.cos(math.radians(87))]],
+             repeat=400),
+        dict(id="disk-jitter", scene=DISK, options=["-ab", "0", "-ds", ".05", "-dj", "1", "-u-"],
+             rays=[[0, 0, 0, 0, 0, 1]], repeat=400),
         dict(id="disk-axis", scene=DISK, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
         dict(id="rect-corner", scene=RECT, options=["-ab", "0", "-ds", ".05"], rays=[[0, 0, 0, 0, 0, 1]]),
+        dict(id="triangle", scene=TRIANGLE, options=["-ab", "0", "-ds", ".05"],
+             rays=[[0, 0, 0, 0, 0, 1], [1, 0.5, 0, 0, 0, 1], [-1, -1, 0, 0.6, 0, 0.8]]),
         # Jittered source samples (-dj 1): random points over each partition.
         dict(id="rect-jitter", scene=RECT, options=["-ab", "0", "-ds", ".05", "-dj", "1"],
              rays=[[0, 0, 0, 0, 0, 1]], repeat=400),
+        # -u-: rtrace's default -u+ turns each source's partitions at random, which
+        # moves the partitions a shadow's edge crosses (radc orients them as -u-).
+        dict(id="rect-occluded", scene=RECT_OCCLUDED, options=["-ab", "0", "-ds", ".05", "-u-"],
+             rays=[[0, 0, 0, 0, 0, 1]]),
+        dict(id="rect-occluded-jitter", scene=RECT_OCCLUDED,
+             options=["-ab", "0", "-ds", ".05", "-dj", "1", "-u-"], rays=[[0, 0, 0, 0, 0, 1]],
+             repeat=400),
+        dict(id="disk-occluded", scene=DISK_OCCLUDED, options=["-ab", "0", "-ds", ".05", "-u-"],
+             rays=[[0, 0, 0, 0, 0, 1]]),
         dict(id="glow-dome", scene=GLOW_DOME, options=["-ab", "1", "-ad", "64"],
              rays=[[0, 0, 0, 0, 0, 1], [3, -2, 0, 0, 0, 1]]),
         dict(id="integrating-ab3", scene=INTEGRATING, options=["-ab", "3", "-ad", "64"],
@@ -143,9 +174,15 @@ def agrees(old, new, c):
 
 def main():
     check = "--check" in sys.argv[1:]
+    only = None
+    if "--only" in sys.argv[1:]:
+        at = sys.argv.index("--only")
+        only = set(sys.argv[at + 1].split(",")) if at + 1 < len(sys.argv) else set()
     os.makedirs(DATA, exist_ok=True)
     path = os.path.join(DATA, "cases.json")
     old = {}
+    if only is not None:
+        old = {c["id"]: c for c in json.load(open(path))}
     if check:
         try:
             old = {c["id"]: c for c in json.load(open(path))}
@@ -155,6 +192,10 @@ def main():
     out, failed = [], []
     with tempfile.TemporaryDirectory() as tmp:
         for c in cases():
+            if only is not None and c["id"] not in only:
+                if c["id"] in old:
+                    out.append(old[c["id"]])
+                continue
             rad = os.path.join(DATA, c["id"] + ".rad")
             if check:
                 if open(rad).read() != c["scene"]:

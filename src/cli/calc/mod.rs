@@ -511,10 +511,7 @@ fn run_stream<E: RecordEngine>(
     let mut one = |line: &[u8], engine: &mut E, scratch: &mut Scratch| -> Result<bool, Stop> {
         nrecs += 1;
         let mut record = Record::from_bytes(line, sep);
-        let result = match engine.begin_record(&mut record) {
-            Ok(true) => produce(engine, o, &mut record, None, scratch).map(|()| true),
-            other => other,
-        };
+        let result = evaluate(engine, o, &mut record, None, scratch);
         let produced = matches!(result, Ok(true));
         emit(out, engine, o, result, scratch)?;
         nout += u64::from(produced);
@@ -598,12 +595,7 @@ fn run_matched<E: RecordEngine>(
             engine.set_named(name, *v);
         }
         let mut no_columns = radc_lang::cal::eval::NoInput;
-        let result = match engine.begin_record(&mut no_columns) {
-            Ok(true) => {
-                produce(engine, o, &mut no_columns, Some(&m.strings), scratch).map(|()| true)
-            }
-            other => other,
-        };
+        let result = evaluate(engine, o, &mut no_columns, Some(&m.strings), scratch);
         let produced = matches!(result, Ok(true));
         let rejected = matches!(result, Ok(false));
         emit(out, engine, o, result, scratch)?;
@@ -644,6 +636,21 @@ fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize, text: &mut Vec<u
     }
     text.push(b'\n');
     true
+}
+
+/// One record: its condition, then, if accepted, its output into `scratch` (see
+/// [`produce`]). `Ok(false)` is a record the condition rejected.
+fn evaluate<E: RecordEngine>(
+    engine: &mut E,
+    o: &Options,
+    input: &mut dyn radc_lang::cal::eval::Input,
+    record_strings: Option<&HashMap<String, String>>,
+    scratch: &mut Scratch,
+) -> Result<bool, radc_jit::Error> {
+    if !engine.begin_record(input)? {
+        return Ok(false);
+    }
+    produce(engine, o, input, record_strings, scratch).map(|()| true)
 }
 
 /// The output of an accepted record (rcalc.c `putout`), into `scratch.bytes`: the

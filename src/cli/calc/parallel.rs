@@ -9,7 +9,7 @@
 //! reaching any of these, and runs whose order of reading matters (`-u`, `-in`,
 //! `-on`, input formats, `-p`, binary input, a terminal), stay on one thread.
 
-use super::{Format, Options, Passive, Scratch, Stop, produce};
+use super::{Format, Options, Passive, Scratch, Stop, evaluate};
 use radc_jit::RecordEngine;
 use radc_jit::interp::{Record, format_outputs};
 use radc_lang::cal::Module;
@@ -180,10 +180,7 @@ fn run_chunk<E: RecordEngine>(engine: &mut E, chunk: &[u8], first: u64, o: &Opti
         let end = memchr::memchr(b'\n', &chunk[start..]).map_or(chunk.len(), |k| start + k + 1);
         let mut record = Record::from_bytes(&chunk[start..end], o.sep);
         start = end;
-        let result = match engine.begin_record(&mut record) {
-            Ok(true) => produce(engine, o, &mut record, None, &mut scratch).map(|()| true),
-            other => other,
-        };
+        let result = evaluate(engine, o, &mut record, None, &mut scratch);
         let warnings = engine.take_warnings();
         if !warnings.is_empty() {
             done.warnings.push((done.bytes.len(), warnings));
