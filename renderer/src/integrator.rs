@@ -550,13 +550,16 @@ impl<'a> Tracer<'a> {
     /// beats a back face, then the later modifier wins.
     fn nearest(&self, ray: &Ray, limit: f64) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
-        self.scene.bvh.traverse(ray, limit + FTINY, |i| {
-            if let Some(o) = self.scene.object(i)
-                && let Some(h) = o.shape.intersect(ray)
+        let scene = self.scene;
+        scene.bvh.traverse(ray, limit + FTINY, |slot| {
+            // Farther hits are rejected whatever they are (`rejects`): the shape need
+            // not finish testing them.
+            let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
+            if let Some((object, h)) = scene.surfaces.intersect(slot, &scene.objects, ray, tmax)
                 && h.t <= limit + FTINY
             {
                 let cand = Candidate {
-                    object: i,
+                    object,
                     t: h.t,
                     normal: h.normal,
                     rod: h.rod,
@@ -568,6 +571,20 @@ impl<'a> Tracer<'a> {
             best.map_or(limit + FTINY, |b| b.t + FTINY)
         });
         best
+    }
+
+    /// Whether `ray` hits any surface (`nearest` would find one): stops at the first.
+    fn hits_anything(&self, ray: &Ray) -> bool {
+        let mut hit = false;
+        let scene = self.scene;
+        scene.bvh.traverse(ray, f64::INFINITY, |slot| {
+            hit = scene
+                .surfaces
+                .intersect(slot, &scene.objects, ray, f64::INFINITY)
+                .is_some();
+            if hit { -1.0 } else { f64::INFINITY }
+        });
+        hit
     }
 
     fn rejects(&self, best: Option<&Candidate>, new: &Candidate) -> bool {
@@ -709,6 +726,11 @@ impl<'a> Tracer<'a> {
             // The source's own value, from the source surface alone (`srcvalue`).
             Some(self.source_value(&sr, si)? * c)
         };
+        if self.scene.opaque_to_shadows && matches!(source.target, SourceTarget::Distant(_)) {
+            // Whatever it hits shades it black (`Scene::opaque_to_shadows`), and the
+            // distant source is no surface: the first hit found decides.
+            return (!self.hits_anything(&Ray::new(sr.org, sr.dir))).then_some(value?);
+        }
         match self.nearest(&Ray::new(sr.org, sr.dir), f64::INFINITY) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,

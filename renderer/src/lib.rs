@@ -16,6 +16,7 @@ pub mod scene_file;
 pub mod shapes;
 pub mod small_sources;
 pub mod solid_angle;
+pub mod surfaces;
 pub mod tonemap;
 pub mod virtuals;
 

@@ -16,6 +16,7 @@ use crate::materials::mist::Mist;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
+use crate::surfaces::Surfaces;
 
 /// A surface.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -51,6 +52,16 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub sources: Vec<Source>,
     pub bvh: Bvh,
+    /// The BVH's leaf slots' geometry, derived from `objects` and `bvh`
+    /// ([`Scene::pack_surfaces`]).
+    #[serde(skip)]
+    pub surfaces: Surfaces,
+    /// Every surface has a plastic or metal material with no transmission, which shades
+    /// shadow rays black whatever else holds (and without antimatter no ray passes a
+    /// surface): a shadow ray toward a distant source is blocked by anything it hits,
+    /// so only whether it hits anything matters. Derived with `surfaces`.
+    #[serde(skip)]
+    pub opaque_to_shadows: bool,
 }
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
@@ -109,7 +120,20 @@ impl Scene {
         scene.sources = sources;
         let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
         scene.bvh = Bvh::build(&bounds);
+        scene.pack_surfaces();
         Ok(scene)
+    }
+
+    /// Lays out the surfaces in BVH order for traversal (after the BVH was built or
+    /// loaded).
+    pub fn pack_surfaces(&mut self) {
+        self.surfaces = Surfaces::pack(&self.objects, &self.bvh);
+        self.opaque_to_shadows = self.objects.iter().all(|o| {
+            matches!(
+                o.material.and_then(|m| self.material(m)),
+                Some(Material::Normal(n)) if n.transmission.is_none()
+            )
+        });
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
@@ -650,6 +674,45 @@ pub(crate) mod tests {
             "the unused material is not compiled"
         );
         assert_eq!(scene.sources.len(), 1);
+    }
+
+    /// Shadow rays may stop at their first hit only when every surface shades them
+    /// black: plastic alone, not with a glass pane or a lamp among the surfaces.
+    #[test]
+    fn opaque_to_shadows_only_without_transparent_or_emitting_surfaces() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        b.square("floor", grey, 0.0, true);
+        assert!(
+            Scene::compile(&b.scene)
+                .expect("compiles")
+                .opaque_to_shadows
+        );
+        let pane = b.add(
+            "glass",
+            "pane",
+            None,
+            PrimKind::Glass {
+                transmission: [0.9; 3],
+                index: 1.52,
+            },
+        );
+        b.square("window", pane, 1.0, true);
+        assert!(
+            !Scene::compile(&b.scene)
+                .expect("compiles")
+                .opaque_to_shadows
+        );
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        b.square("floor", grey, 0.0, true);
+        b.square("panel", lamp, 2.0, false);
+        assert!(
+            !Scene::compile(&b.scene)
+                .expect("compiles")
+                .opaque_to_shadows
+        );
     }
 
     #[test]

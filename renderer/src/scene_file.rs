@@ -167,9 +167,11 @@ pub fn decode(bytes: &[u8]) -> Result<Scene, SceneFileError> {
             why: format!("{} bytes left after the scene", left.len()),
         });
     }
+    let mut scene = scene;
     scene
         .validate()
         .map_err(|why| SceneFileError::Undecodable { why })?;
+    scene.pack_surfaces();
     Ok(scene)
 }
 

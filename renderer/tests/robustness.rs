@@ -65,7 +65,8 @@ proptest! {
         let mut d = dir;
         radc_renderer::math::normalize(&mut d);
         let ray = Ray::new(org, d);
-        bvh.traverse(&ray, f64::INFINITY, |i| {
+        bvh.traverse(&ray, f64::INFINITY, |slot| {
+            let i = bvh.primitive(slot).expect("a slot of the tree");
             let _ = shapes[i as usize].intersect(&ray);
             f64::INFINITY
         });
@@ -100,7 +101,8 @@ fn bvh_finds_what_brute_force_finds() {
             .map(|h| h.t)
             .fold(f64::INFINITY, f64::min);
         let mut best = f64::INFINITY;
-        bvh.traverse(&ray, f64::INFINITY, |i| {
+        bvh.traverse(&ray, f64::INFINITY, |slot| {
+            let i = bvh.primitive(slot).expect("a slot of the tree");
             if let Some(h) = shapes[i as usize].intersect(&ray) {
                 best = best.min(h.t);
             }

@@ -14,6 +14,7 @@ mod fmt;
 #[path = "gen.rs"]
 mod generate;
 mod lsp;
+mod ray_text;
 mod render;
 mod report;
 mod trace;

@@ -18,6 +18,7 @@ use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
+use super::ray_text::{c_exp_into, is_space, radiance_number};
 use super::report::{self, Sources};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
@@ -469,8 +470,11 @@ pub(super) fn load_scene(
 struct RayReader<R> {
     input: R,
     format: Format,
-    line: String,
-    words: std::collections::VecDeque<f64>,
+    line: Vec<u8>,
+    /// The numbers of the current line (a NaN marks a word that is not one) and the
+    /// next to return.
+    words: Vec<f64>,
+    at: usize,
     eof: bool,
 }
 
@@ -479,8 +483,9 @@ impl<R: BufRead> RayReader<R> {
         RayReader {
             input,
             format,
-            line: String::new(),
-            words: Default::default(),
+            line: Vec::new(),
+            words: Vec::new(),
+            at: 0,
             eof: false,
         }
     }
@@ -541,43 +546,38 @@ impl<R: BufRead> RayReader<R> {
     }
 
     fn next_word(&mut self) -> Option<f64> {
-        while self.words.is_empty() {
+        while self.at == self.words.len() {
             self.line.clear();
-            if self.input.read_line(&mut self.line).ok()? == 0 {
+            self.words.clear();
+            self.at = 0;
+            if self.input.read_until(b'\n', &mut self.line).ok()? == 0 {
                 return None;
             }
-            for w in self.line.split_whitespace() {
-                // rtrace stops at the first word that is not a number.
-                let Some(x) = radiance_number(w) else {
-                    self.words.push_back(f64::NAN);
-                    break;
-                };
-                self.words.push_back(x);
+            if self.line.is_ascii() {
+                for w in self.line.split(|&b| is_space(b)).filter(|w| !w.is_empty()) {
+                    // rtrace stops at the first word that is not a number.
+                    let Some(x) = radiance_number(w) else {
+                        self.words.push(f64::NAN);
+                        break;
+                    };
+                    self.words.push(x);
+                }
+            } else {
+                // Unicode spaces separate words too; a line that is not UTF-8 ends the
+                // input.
+                let line = std::str::from_utf8(&self.line).ok()?;
+                for w in line.split_whitespace() {
+                    let Some(x) = radiance_number(w.as_bytes()) else {
+                        self.words.push(f64::NAN);
+                        break;
+                    };
+                    self.words.push(x);
+                }
             }
         }
-        self.words.pop_front().filter(|x| !x.is_nan())
-    }
-}
-
-/// A word in Radiance's real-number syntax (`[+-]digits[.digits][e[+-]digits]`, or
-/// starting with the point): no `inf`, `nan` or hex, which Rust would otherwise accept.
-fn radiance_number(w: &str) -> Option<f64> {
-    let body = w.strip_prefix(['+', '-']).unwrap_or(w);
-    let (mantissa, exponent) = match body.find(['e', 'E']) {
-        Some(i) => (&body[..i], Some(&body[i + 1..])),
-        None => (body, None),
-    };
-    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-    let digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
-    let ok_mantissa = digits(int) && digits(frac) && !(int.is_empty() && frac.is_empty());
-    let ok_exponent = exponent.is_none_or(|e| {
-        let e = e.strip_prefix(['+', '-']).unwrap_or(e);
-        !e.is_empty() && digits(e)
-    });
-    if ok_mantissa && ok_exponent {
-        w.parse().ok()
-    } else {
-        None
+        let x = self.words[self.at];
+        self.at += 1;
+        (!x.is_nan()).then_some(x)
     }
 }
 
@@ -668,133 +668,9 @@ fn put(out: &mut impl Write, f: Format, v: &[f64]) {
     };
 }
 
-/// C's `%e`: six decimals and an exponent of at least two digits (`1.000000e+10`).
-#[cfg(test)]
-fn c_exp(x: f64) -> String {
-    let mut buf = [0u8; 40];
-    let n = c_exp_into(x, &mut buf);
-    String::from_utf8_lossy(&buf[..n]).into_owned()
-}
-
-/// `c_exp` into `buf` (at least 39 bytes), returning the length: no allocation, since
-/// rtrace's output is a few numbers per ray and formatting them is on the hot path.
-/// The digits are Rust's exactly rounded `{:.6e}`; only the exponent is rewritten.
-fn c_exp_into(x: f64, buf: &mut [u8; 40]) -> usize {
-    let special: &[u8] = if x.is_nan() {
-        if x.is_sign_negative() {
-            b"-nan"
-        } else {
-            b"nan"
-        }
-    } else if x.is_infinite() {
-        if x < 0.0 { b"-inf" } else { b"inf" }
-    } else {
-        b""
-    };
-    if !special.is_empty() {
-        buf[..special.len()].copy_from_slice(special);
-        return special.len();
-    }
-    let mut cursor = std::io::Cursor::new(&mut buf[..]);
-    // At most "-d.dddddde-324": 14 bytes, so the write cannot fail.
-    let _ = write!(cursor, "{x:.6e}");
-    let len = cursor.position() as usize;
-    let Some(e) = buf[..len].iter().position(|&b| b == b'e') else {
-        return len;
-    };
-    let (negative, digits) = match buf[e + 1] {
-        b'-' => (true, e + 2),
-        _ => (false, e + 1),
-    };
-    let exp: u32 = buf[digits..len]
-        .iter()
-        .fold(0, |v, d| v * 10 + u32::from(d - b'0'));
-    let mut at = e + 1;
-    buf[at] = if negative { b'-' } else { b'+' };
-    at += 1;
-    if exp >= 100 {
-        buf[at] = b'0' + (exp / 100) as u8;
-        at += 1;
-    }
-    buf[at] = b'0' + (exp / 10 % 10) as u8;
-    buf[at + 1] = b'0' + (exp % 10) as u8;
-    at + 2
-}
-
-#[cfg(test)]
-fn c_exp_reference(x: f64) -> String {
-    if x.is_nan() {
-        return if x.is_sign_negative() { "-nan" } else { "nan" }.into();
-    }
-    if x.is_infinite() {
-        return if x < 0.0 { "-inf" } else { "inf" }.into();
-    }
-    let s = format!("{x:.6e}");
-    let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let sign = if exp < 0 { '-' } else { '+' };
-    format!("{mantissa}e{sign}{:02}", exp.unsigned_abs())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn c_exp_matches_printf() {
-        assert_eq!(c_exp(0.5), "5.000000e-01");
-        assert_eq!(c_exp(0.0), "0.000000e+00");
-        assert_eq!(c_exp(-0.0), "-0.000000e+00");
-        assert_eq!(c_exp(1e10), "1.000000e+10");
-        assert_eq!(c_exp(3.141718), "3.141718e+00");
-        assert_eq!(c_exp(-1.5e-120), "-1.500000e-120");
-        assert_eq!(c_exp(9.9999999e9), "1.000000e+10");
-        assert_eq!(c_exp(f64::MIN_POSITIVE / 8.0), "2.781342e-309");
-        assert_eq!(c_exp(f64::NAN), "nan");
-        assert_eq!(c_exp(f64::NEG_INFINITY), "-inf");
-    }
-
-    /// The allocation-free formatter equals the straightforward one everywhere.
-    #[test]
-    fn c_exp_into_matches_the_reference() {
-        let mut x = 1.234_567_891e-300_f64;
-        while x < 1e300 {
-            for v in [x, -x, x * 0.999_999_95, x * 1.000_000_5] {
-                assert_eq!(c_exp(v), c_exp_reference(v), "{v:e}");
-            }
-            x *= 7.77;
-        }
-        for v in [0.0, -0.0, f64::MAX, f64::MIN, 5e-324, 1.0, 9.9999995, 0.5] {
-            assert_eq!(c_exp(v), c_exp_reference(v), "{v:e}");
-        }
-    }
-
-    #[test]
-    fn numbers_in_radiance_syntax_only() {
-        for (w, v) in [
-            ("1", 1.0),
-            ("-2.5", -2.5),
-            (".5", 0.5),
-            ("5.", 5.0),
-            ("1e3", 1e3),
-            ("+1.5E-2", 0.015),
-        ] {
-            assert_eq!(radiance_number(w), Some(v), "{w}");
-        }
-        for w in [
-            "nan",
-            "inf",
-            "-infinity",
-            "0x10",
-            ".",
-            "e5",
-            "1e",
-            "1.2.3",
-            "",
-        ] {
-            assert_eq!(radiance_number(w), None, "{w}");
-        }
-    }
 
     #[test]
     fn switches_toggle() {

@@ -5,11 +5,13 @@ pub mod cone;
 pub mod polygon;
 pub mod ring;
 pub mod sphere;
+pub mod triangle;
 
 pub use cone::Cone;
 pub use polygon::Polygon;
 pub use ring::Ring;
 pub use sphere::Sphere;
+pub use triangle::Triangle;
 
 use crate::math::{Bounds, FTINY};
 use crate::ray::{Ray, ShapeHit};
@@ -31,6 +33,16 @@ impl Shape {
             Shape::Polygon(p) => p.intersect(ray),
             Shape::Ring(r) => r.intersect(ray),
             Shape::Cone(c) => c.intersect(ray),
+        }
+    }
+
+    /// `intersect` for hits no farther than `tmax`.
+    pub fn intersect_within(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect_within(ray, tmax),
+            Shape::Polygon(p) => p.intersect_within(ray, tmax),
+            Shape::Ring(r) => r.intersect(ray).filter(|h| h.t <= tmax),
+            Shape::Cone(c) => c.intersect(ray).filter(|h| h.t <= tmax),
         }
     }
 

@@ -26,6 +26,52 @@ fn rel_eq(a: f64, b: f64) -> bool {
     (a - b).abs() <= FTINY * 0.5 * (a.abs() + b.abs())
 }
 
+/// The two axes kept by the projection that drops `axis`.
+#[inline(always)]
+pub(crate) fn projection(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    }
+}
+
+/// One edge `a -> b` of the crossing-number test of point `(x, y)` (`inface`):
+/// true when the point lies on the edge (inside, whatever the other edges say),
+/// otherwise flips `odd` when the edge crosses the ray from the point along +x.
+#[inline(always)]
+pub(crate) fn crossing(a: (f64, f64), b: (f64, f64), x: f64, y: f64, odd: &mut bool) -> bool {
+    let ((ax, ay), (bx, by)) = (a, b);
+    // A horizontal edge through the point that spans it.
+    if rel_eq(ay, y) && rel_eq(by, y) && ((ax > x) != (bx > x)) {
+        return true;
+    }
+    if (ay > y) == (by > y) {
+        return false;
+    }
+    match u8::from(ax > x) + u8::from(bx > x) {
+        2 => *odd = !*odd,
+        1 => {
+            // Which side of the edge the point is on, from the two products of the
+            // edge-to-point offsets; equal products mean it lies on the edge.
+            let pa = (ay - y) * (bx - x);
+            let pb = (ax - x) * (by - y);
+            if rel_eq(pa, pb) {
+                return true;
+            }
+            if (by > ay) != (pa > pb) {
+                *odd = !*odd;
+            }
+        }
+        _ => {
+            if rel_eq(ax, x) && rel_eq(bx, x) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
 impl Polygon {
     /// `None` for fewer than 3 vertices or zero area (Radiance warns and the polygon is
     /// never hit).
@@ -74,12 +120,18 @@ impl Polygon {
     }
 
     pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        self.intersect_within(ray, f64::INFINITY)
+    }
+
+    /// `intersect` for hits no farther than `tmax` (a farther hit is `None` before the
+    /// inside test, which is the costly part).
+    pub fn intersect_within(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
         let rod = -ray.dir.dot(self.normal);
         if rod.abs() <= FTINY {
             return None;
         }
         let t = (ray.org.dot(self.normal) - self.offset) / rod;
-        if t <= FTINY || !t.is_finite() {
+        if t <= FTINY || !t.is_finite() || t > tmax {
             return None;
         }
         let p = ray.at(t);
@@ -100,44 +152,25 @@ impl Polygon {
     /// to its cells; radc clips them to the polygon's bounding box (`extent`), which
     /// changes nothing near the origin.
     pub fn contains(&self, p: Vec3) -> bool {
-        let xi = (self.axis + 1) % 3;
-        let yi = (xi + 1) % 3;
+        let (xi, yi) = projection(self.axis);
         let (x, y) = (p[xi], p[yi]);
-        let n = self.vertices.len();
+        let Some(&last) = self.vertices.last() else {
+            return false;
+        };
         let mut odd = false;
-        for i in 0..n {
-            let a = self.vertices[(i + n - 1) % n];
-            let b = self.vertices[i];
-            let (ax, ay, bx, by) = (a[xi], a[yi], b[xi], b[yi]);
-            // A horizontal edge through the point that spans it.
-            if rel_eq(ay, y) && rel_eq(by, y) && ((ax > x) != (bx > x)) {
+        let mut a = last;
+        for &b in &self.vertices {
+            if crossing((a[xi], a[yi]), (b[xi], b[yi]), x, y, &mut odd) {
                 return true;
             }
-            if (ay > y) == (by > y) {
-                continue;
-            }
-            match u8::from(ax > x) + u8::from(bx > x) {
-                2 => odd = !odd,
-                1 => {
-                    // Which side of the edge the point is on, from the two products of
-                    // the edge-to-point offsets; equal products mean it lies on the edge.
-                    let pa = (ay - y) * (bx - x);
-                    let pb = (ax - x) * (by - y);
-                    if rel_eq(pa, pb) {
-                        return true;
-                    }
-                    if (by > ay) != (pa > pb) {
-                        odd = !odd;
-                    }
-                }
-                _ => {
-                    if rel_eq(ax, x) && rel_eq(bx, x) {
-                        return true;
-                    }
-                }
-            }
+            a = b;
         }
         odd
+    }
+
+    /// The axis the inside test drops, for the triangle fast path.
+    pub(crate) fn axis(&self) -> usize {
+        self.axis
     }
 
     pub fn centroid(&self) -> Vec3 {

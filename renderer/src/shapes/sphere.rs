@@ -15,6 +15,12 @@ pub struct Sphere {
 
 impl Sphere {
     pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        self.intersect_within(ray, f64::INFINITY)
+    }
+
+    /// `intersect` for hits no farther than `tmax`.
+    #[inline]
+    pub fn intersect_within(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
         // Closest approach first: |oc|^2 - r^2 cancels badly far from the sphere, the
         // squared distance of the closest point to the centre does not.
         let oc = ray.org - self.center;
@@ -34,6 +40,9 @@ impl Sphere {
             Quadratic::Two(tca - h, tca + h)
         };
         let (_, t) = roots.roots().find(|&(_, t)| t > FTINY)?;
+        if t > tmax {
+            return None;
+        }
         let p = ray.at(t);
         let scale = if self.inward {
             -self.radius

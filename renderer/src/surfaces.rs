@@ -1,0 +1,80 @@
+//! The surfaces as BVH traversal sees them, indexed by leaf slot: for each slot the
+//! object and where its geometry is, the geometry itself in compact per-kind lists in
+//! slot order (neighbouring slots are neighbours in memory). Names, materials and
+//! modifiers stay in [`crate::scene::Object`], which traversal never touches.
+//! Triangles and spheres are stored inline, other shapes are intersected through their
+//! object.
+//!
+//! Derived from the objects and the BVH (never stored in a compiled scene file): built
+//! by [`crate::scene::Scene::compile`] and when a compiled scene is loaded.
+
+use crate::bvh::Bvh;
+use crate::ray::{Ray, ShapeHit};
+use crate::scene::Object;
+use crate::shapes::{Shape, Sphere, Triangle};
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Surfaces {
+    /// Per slot: the object, and its geometry's kind (top two bits) and index in that
+    /// kind's list.
+    slots: Vec<(u32, u32)>,
+    triangles: Vec<Triangle>,
+    spheres: Vec<Sphere>,
+}
+
+const KIND_SHIFT: u32 = 30;
+const INDEX: u32 = (1 << KIND_SHIFT) - 1;
+const TRIANGLE: u32 = 0;
+const SPHERE: u32 = 1;
+const OBJECT: u32 = 2;
+
+impl Surfaces {
+    /// The surface of every leaf slot of `bvh`, in slot order.
+    pub fn pack(objects: &[Object], bvh: &Bvh) -> Surfaces {
+        let mut s = Surfaces::default();
+        for &object in bvh.order() {
+            let shape = objects.get(object as usize).map(|o| &o.shape);
+            let (kind, index) = match shape {
+                Some(Shape::Polygon(p)) if s.triangles.len() < INDEX as usize => {
+                    match Triangle::of(p) {
+                        Some(t) => {
+                            s.triangles.push(t);
+                            (TRIANGLE, s.triangles.len() - 1)
+                        }
+                        None => (OBJECT, 0),
+                    }
+                }
+                Some(Shape::Sphere(sp)) if s.spheres.len() < INDEX as usize => {
+                    s.spheres.push(sp.clone());
+                    (SPHERE, s.spheres.len() - 1)
+                }
+                _ => (OBJECT, 0),
+            };
+            s.slots.push((object, kind << KIND_SHIFT | index as u32));
+        }
+        s
+    }
+
+    /// The object in `slot` and its hit (as [`Shape::intersect`] finds it), or `None`
+    /// when there is none or it lies beyond `tmax`.
+    #[inline]
+    pub fn intersect(
+        &self,
+        slot: u32,
+        objects: &[Object],
+        ray: &Ray,
+        tmax: f64,
+    ) -> Option<(u32, ShapeHit)> {
+        let &(object, at) = self.slots.get(slot as usize)?;
+        let index = (at & INDEX) as usize;
+        let hit = match at >> KIND_SHIFT {
+            TRIANGLE => self.triangles.get(index)?.intersect_within(ray, tmax),
+            SPHERE => self.spheres.get(index)?.intersect_within(ray, tmax),
+            _ => objects
+                .get(object as usize)?
+                .shape
+                .intersect_within(ray, tmax),
+        };
+        Some((object, hit?))
+    }
+}
