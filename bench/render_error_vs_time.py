@@ -23,7 +23,7 @@ pixel brightness against the reference, relative to the reference's mean brightn
 radc runs on one thread (RAYON_NUM_THREADS=1, as rpict runs one process). Pictures
 are read with Radiance's pvalue.
 
-Usage (from the repository root, Radiance on PATH or `source tests/oracle/env.sh`):
+Usage (from the repository root; Radiance from PATH, or else the oracle venv):
   python3 bench/render_error_vs_time.py [--no-build] [--radc PATH] [--ads 16,64,256]
 """
 
@@ -34,6 +34,8 @@ import struct
 import subprocess
 import sys
 import tempfile
+
+from radiance import radiance_env
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "tests", "data", "accuracy", "room-ab1.rad")
@@ -79,16 +81,17 @@ def main():
     args = ap.parse_args()
     if not args.no_build:
         subprocess.run(["cargo", "build", "--release", "--bin", "radc"], cwd=ROOT, check=True)
-    one = dict(os.environ, RAYON_NUM_THREADS="1")
+    env = radiance_env("rpict", "oconv")
+    one = dict(env, RAYON_NUM_THREADS="1")
     with tempfile.TemporaryDirectory() as tmp:
         octree = os.path.join(tmp, "room.oct")
         with open(octree, "wb") as f:
-            subprocess.run(["oconv", SCENE], stdout=f, check=True)
+            subprocess.run(["oconv", SCENE], stdout=f, check=True, env=env)
         rpict = ["rpict", "-pj", "0", "-ps", "1"] + VIEW + SIZE + COMMON
         radc = [args.radc, "render"] + VIEW + SIZE + COMMON
         ref_pic = os.path.join(tmp, "ref.hdr")
-        tref = timed(rpict + ["-ad", str(REFERENCE_AD), octree], ref_pic)
-        timed(rpict + ["-ab", "0", octree], os.path.join(tmp, "rpict_direct.hdr"))
+        tref = timed(rpict + ["-ad", str(REFERENCE_AD), octree], ref_pic, env=env)
+        timed(rpict + ["-ab", "0", octree], os.path.join(tmp, "rpict_direct.hdr"), env=env)
         timed(radc + ["-ab", "0", "-dx+", SCENE], os.path.join(tmp, "exact_direct.hdr"))
         ref = [r - d + x for r, d, x in zip(
             brightness(ref_pic), brightness(os.path.join(tmp, "rpict_direct.hdr")),
@@ -102,7 +105,7 @@ def main():
             p1 = os.path.join(tmp, "rpict%d.hdr" % ad)
             p2 = os.path.join(tmp, "radc%d.hdr" % ad)
             p3 = os.path.join(tmp, "radcdx%d.hdr" % ad)
-            t1 = timed(rpict + ["-ad", str(ad), octree], p1)
+            t1 = timed(rpict + ["-ad", str(ad), octree], p1, env=env)
             t2 = timed(radc + ["-ad", str(ad), SCENE], p2, env=one)
             t3 = timed(radc + ["-ad", str(ad), "-dx+", SCENE], p3, env=one)
             b1, b2, b3 = brightness(p1), brightness(p2), brightness(p3)

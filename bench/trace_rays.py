@@ -48,25 +48,10 @@ import tempfile
 import time
 from pathlib import Path
 
+from radiance import radiance_env
+
 ROOT = Path(__file__).resolve().parent.parent
 SETTINGS = ["-ab", "0", "-dj", "0", "-dt", "0", "-dr", "0", "-u-"]
-
-
-def radiance_env():
-    """PATH and RAYPATH with Radiance on them (the oracle venv, unless already there)."""
-    env = dict(os.environ)
-    if shutil.which("rtrace") and shutil.which("gensurf"):
-        return env
-    py = ROOT / ".oracle" / "bin" / "python"
-    if not py.exists():
-        sys.exit("Radiance not found: run `bash tests/oracle/install.sh` (or put rtrace on PATH)")
-    pkg = subprocess.check_output(
-        [str(py), "-c", "import pyradiance, os; print(os.path.dirname(pyradiance.__file__))"],
-        text=True,
-    ).strip()
-    env["PATH"] = f"{pkg}/bin{os.pathsep}{env.get('PATH', '')}"
-    env["RAYPATH"] = f".{os.pathsep}{pkg}/lib"
-    return env
 
 
 def run_text(cmd, env, cwd):
@@ -186,7 +171,7 @@ def main():
     ap.add_argument("--only", default=",".join(SCENES))
     ap.add_argument("--keep", help="write the scenes and rays here and keep them")
     args = ap.parse_args()
-    env = radiance_env()
+    env = radiance_env("rtrace", "gensurf")
     radc = str(Path(args.radc).resolve())
     cores = os.cpu_count() or 1
     d = args.keep or tempfile.mkdtemp(prefix="radc-trace-bench-")
