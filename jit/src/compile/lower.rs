@@ -121,6 +121,11 @@ pub struct Lower<'a, 'b, 'm> {
     undo: Vec<(Key, Option<Value>)>,
     /// Values that are numbers (made by [`Lower::number`]).
     numbers: HashMap<Value, f64>,
+    /// Values that are never a signalling NaN, because the hardware or the C library
+    /// made them (an arithmetic instruction's result, a library function's): see
+    /// [`Lower::nan_first`]. Never a load (which Cranelift may fold into the other
+    /// side of `+` or `*`) nor a negation (`-a * -b` is rewritten to `a * b`).
+    quiet: HashSet<Value>,
     /// Inlined calls: frame `k >= 1` is `frames[k - 1]`; frame 0 is the activation
     /// the generated function runs in (`block`, `owner`).
     frames: Vec<Inline<'m>>,
@@ -195,6 +200,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             known_args: HashMap::new(),
             undo: Vec::new(),
             numbers: HashMap::new(),
+            quiet: HashSet::new(),
             frames: Vec::new(),
             cur: 0,
             maybe_computed: HashSet::new(),
@@ -306,6 +312,14 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Some(v) => v,
             None => self.f64c(0.0),
         }
+    }
+
+    /// A C library function of `host.rs` (pow, atan2, the unary ones): its result is
+    /// never a signalling NaN (see [`Lower::quiet`]).
+    fn call_lib(&mut self, name: &'static str, args: &[Value]) -> Value {
+        let v = self.call_import_f64(name, args);
+        self.quiet.insert(v);
+        v
     }
 
     fn uniform_sig(&mut self) -> SigRef {
@@ -748,7 +762,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 self.b.def_var(val, d);
                 self.jump_with(j, d);
                 self.b.switch_to_block(j);
-                out
+                // Every value of `val` is a result of the same call.
+                self.quiet_if(out, &[d])
             }
             None => {
                 let d = call(self);
@@ -787,18 +802,42 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
     }
 
+    /// Whether a value is either not a NaN or a quiet NaN made by the hardware or
+    /// the C library ([`Lower::quiet`]), never a signalling NaN.
+    fn is_quiet(&self, v: Value) -> bool {
+        self.not_nan(v) || self.quiet.contains(&v)
+    }
+
+    /// Mark `v` as [`Lower::is_quiet`] when every value it can be is.
+    fn quiet_if(&mut self, v: Value, parts: &[Value]) -> Value {
+        if parts.iter().all(|&p| self.is_quiet(p)) {
+            self.quiet.insert(v);
+        }
+        v
+    }
+
     /// `Evaluator`'s `nan_first`: with a NaN operand, the first NaN operand itself
     /// (x86 keeps the destination's NaN, and the order is the reference rcalc's);
     /// otherwise the computed result.
+    ///
+    /// The SSE/AVX instruction `result` was computed by (`first op second`) already
+    /// gives that for quiet NaNs: the first source operand if it is a NaN, else the
+    /// second, each unchanged when quiet (only a signalling NaN is changed, to its
+    /// quiet form). So a test is needed only for an operand that may be a
+    /// signalling NaN (an input column, a variable's cached value, a parameter): the
+    /// second's when it may be one, and then the first's too (unless a number), so
+    /// that a NaN first still wins over the second's select.
     fn nan_first(&mut self, first: Value, second: Value, result: Value) -> Value {
-        let r = if self.not_nan(second) {
+        self.quiet.insert(result);
+        let second_quiet = self.is_quiet(second);
+        let r = if second_quiet {
             result
         } else {
             let second_nan = self.b.ins().fcmp(FloatCC::Unordered, second, second);
             self.b.ins().select(second_nan, second, result)
         };
-        if self.not_nan(first) {
-            return r;
+        if self.not_nan(first) || (second_quiet && self.is_quiet(first)) {
+            return self.quiet_if(r, &[first, second]);
         }
         let first_nan = self.b.ins().fcmp(FloatCC::Unordered, first, first);
         self.b.ins().select(first_nan, first, r)
@@ -815,7 +854,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         {
             let num = self.expr(a)?;
             let k = self.op_key(OP_DIV, num, den);
-            return Ok(self.memo(k, |lw| lw.b.ins().fdiv(num, den)));
+            return Ok(self.memo(k, |lw| {
+                let q = lw.b.ins().fdiv(num, den);
+                lw.quiet.insert(q);
+                q
+            }));
         }
         let zero = self.f64c(0.0);
         let is_zero = self.b.ins().fcmp(FloatCC::UnorderedOrEqual, den, zero);
@@ -831,9 +874,10 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let num = self.expr(a)?;
         self.rewind(known);
         let q = self.b.ins().fdiv(num, den);
+        self.quiet.insert(q);
         self.jump_with(j, q);
         self.b.switch_to_block(j);
-        Ok(out)
+        Ok(self.quiet_if(out, &[den]))
     }
 
     /// calexpr.c `epow`: `errno` cleared, both sides (the exponent first: the
@@ -855,7 +899,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let y = self.expr(b)?;
         let x = self.expr(a)?;
         let key = Key::Pow(self.vn(x), self.vn(y));
-        let d = self.pure_call(key, |lw| lw.call_import_f64("radc_pow", &[x, y]));
+        let d = self.pure_call(key, |lw| lw.call_lib("radc_pow", &[x, y]));
         // As for library functions: pure operands leave `errno` clear.
         if pure && self.st.policy != MathErrors::NonFinite {
             return Ok(d);
@@ -872,7 +916,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(ok);
         self.jump_with(j, d);
         self.b.switch_to_block(j);
-        Ok(out)
+        Ok(self.quiet_if(out, &[d]))
     }
 
     /// `MathErrors::NonFinite`: NaN is a domain error, infinity a range error.
@@ -1551,7 +1595,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(ok);
         self.jump_with(j, d);
         self.b.switch_to_block(j);
-        out
+        self.quiet_if(out, &[d])
     }
 
     fn builtin(&mut self, b: Builtin, sym: u32, args: &'m [Expr]) -> R<Value> {
@@ -1682,7 +1726,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
 
     fn atan2(&mut self, y: Value, x: Value) -> Value {
         let key = Key::Atan2(self.vn(y), self.vn(x));
-        self.pure_call(key, |lw| lw.call_import_f64("radc_atan2", &[y, x]))
+        self.pure_call(key, |lw| lw.call_lib("radc_atan2", &[y, x]))
     }
 
     /// A one-argument C library function, inline where it is one instruction.
@@ -1696,13 +1740,19 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 };
                 let zero = self.f64c(0.0);
                 let is_zero = self.b.ins().fcmp(FloatCC::Equal, r, zero);
-                self.b.ins().select(is_zero, zero, r)
+                let v = self.b.ins().select(is_zero, zero, r);
+                self.quiet.insert(v);
+                v
             }
-            Builtin::Sqrt => self.b.ins().sqrt(x),
+            Builtin::Sqrt => {
+                let v = self.b.ins().sqrt(x);
+                self.quiet.insert(v);
+                v
+            }
             other => {
                 let key = Key::Call(other, self.vn(x));
                 self.pure_call(key, |lw| match unary_symbol(other) {
-                    Some(name) => lw.call_import_f64(name, &[x]),
+                    Some(name) => lw.call_lib(name, &[x]),
                     None => lw.f64c(0.0),
                 })
             }
