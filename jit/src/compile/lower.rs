@@ -126,6 +126,11 @@ pub struct Lower<'a, 'b, 'm> {
     /// [`Lower::nan_first`]. Never a load (which Cranelift may fold into the other
     /// side of `+` or `*`) nor a negation (`-a * -b` is rewritten to `a * b`).
     quiet: HashSet<Value>,
+    /// The block in which `errno` was last stored 0 with nothing since (in that
+    /// block) that can change it: no other store of it and no call but the C
+    /// library's. There the store is not repeated and a library call's `errno` test
+    /// is known to pass.
+    errno_clear: Option<ir::Block>,
     /// Inlined calls: frame `k >= 1` is `frames[k - 1]`; frame 0 is the activation
     /// the generated function runs in (`block`, `owner`).
     frames: Vec<Inline<'m>>,
@@ -201,6 +206,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             undo: Vec::new(),
             numbers: HashMap::new(),
             quiet: HashSet::new(),
+            errno_clear: None,
             frames: Vec::new(),
             cur: 0,
             maybe_computed: HashSet::new(),
@@ -267,7 +273,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn f64c(&mut self, v: f64) -> Value {
-        self.b.ins().f64const(v)
+        let c = self.b.ins().f64const(v);
+        self.numbers.insert(c, v);
+        c
     }
 
     fn i64c(&mut self, v: u64) -> Value {
@@ -283,12 +291,26 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn store_raw(&mut self, v: Value, off: i32) {
+        if off == OFF_ERRNO {
+            self.errno_clear = None;
+        }
         self.b.ins().store(mem(), v, self.raw, off);
     }
 
     fn set_errno(&mut self, e: u64) {
+        if e == ERRNO_NONE && self.errno_is_clear() {
+            return;
+        }
         let v = self.i64c(e);
         self.store_raw(v, OFF_ERRNO);
+        if e == ERRNO_NONE {
+            self.errno_clear = self.b.current_block();
+        }
+    }
+
+    /// Whether `errno` is known to be 0 here (see [`Lower::errno_clear`]).
+    fn errno_is_clear(&self) -> bool {
+        self.errno_clear.is_some() && self.errno_clear == self.b.current_block()
     }
 
     fn func_ref(&mut self, id: FuncId) -> FuncRef {
@@ -303,6 +325,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     fn call_import(&mut self, name: &'static str, args: &[Value]) -> Option<Value> {
         let id = self.st.imports[name];
         let f = self.func_ref(id);
+        self.errno_clear = None;
         let inst = self.b.ins().call(f, args);
         self.b.inst_results(inst).first().copied()
     }
@@ -317,7 +340,10 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// A C library function of `host.rs` (pow, atan2, the unary ones): its result is
     /// never a signalling NaN (see [`Lower::quiet`]).
     fn call_lib(&mut self, name: &'static str, args: &[Value]) -> Value {
+        // The C library does not touch the context: `errno` stays as it was.
+        let clear = self.errno_clear;
         let v = self.call_import_f64(name, args);
+        self.errno_clear = clear;
         self.quiet.insert(v);
         v
     }
@@ -905,6 +931,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             return Ok(d);
         }
         self.nonfinite(d);
+        if self.errno_is_clear() {
+            return Ok(d);
+        }
         let errno = self.load_raw(types::I64, OFF_ERRNO);
         let (j, out) = self.join();
         let (bad, ok) = self.cold_branch(errno);
@@ -977,6 +1006,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         if is_constant(module, def) && self.st.warn_nonconstant {
             // Every read warns: nothing to reuse.
             self.sync_depth();
+            self.errno_clear = None;
             let inst = self.b.ins().call(f, &[self.raw]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -1045,6 +1075,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
         self.sync_depth();
+        self.errno_clear = None;
         let inst = self.b.ins().call(f, &[self.raw]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
@@ -1099,6 +1130,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .b
             .ins()
             .call_indirect(sig, thunk, &[self.raw, parent, slot]);
+        self.errno_clear = None;
         let v = self.b.inst_results(inst)[0];
         self.add_depth(1);
         self.check_failed();
@@ -1250,6 +1282,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             let block = self.build_block(args, CalleeName::Static(s), fill)?;
             let f = self.func_ref(fid);
             self.sync_depth();
+            self.errno_clear = None;
             let inst = self.b.ins().call(f, &[self.raw, block]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -1303,6 +1336,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(direct);
         let sig = self.uniform_sig();
         self.sync_depth();
+        self.errno_clear = None;
         let inst = self.b.ins().call_indirect(sig, fp, &[self.raw, new_block]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
@@ -1578,6 +1612,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// calfunc.c `libfunc`'s epilogue: a raised `errno` warns and gives 0.
     fn lib_result(&mut self, d: Value, sym: u32) -> Value {
         self.nonfinite(d);
+        if self.errno_is_clear() {
+            return d;
+        }
         let errno = self.load_raw(types::I64, OFF_ERRNO);
         let (j, out) = self.join();
         let (bad, ok) = self.cold_branch(errno);
