@@ -190,6 +190,14 @@ fn errno_timing_follows_call_by_need() {
         "f(x)=sqrt(x); g(x,y)=max(y,x); $1=f($1); $2=g($1,$2); $3=f($2)+in(1)",
         &["1e999\t2", "4\t-1e999"],
     );
+    // Straight-line code between a library call's clearing of errno and its test:
+    // only a column read (first or again), a division by zero or a nested
+    // error can raise it; the C library itself never does.
+    agree(
+        "$1=sin(cos($1)*2+1);$2=cos(sin($2)+$1);$3=tan(sin(1/$1)+cos(2));\
+         $4=atan2(sin($2),cos($1)*3)+exp(cos(0*$1));$5=sin(cos($2)+select($1,1,2))",
+        &["1e999\t2", "1\t-1e999", "0\t0", "2\t1", "3\t1e999"],
+    );
 }
 
 #[test]
@@ -252,6 +260,25 @@ fn reference_build_quirks() {
     agree(
         "$1=$1+$2;$2=$2+$1;$3=$1-$2;$4=$2-$1;$5=$1*$2;$6=$2*$1*3;$7=-$1",
         &["nan\t-nan", "-nan\tnan", "nan\t1", "1\t-nan"],
+    );
+    // NaNs the hardware or the library made (-nan here) against input NaNs of
+    // either sign, in every order: only operands that may be an input's NaN are
+    // tested, the rest left to the instruction (its first NaN source wins).
+    agree(
+        "$1=sqrt(-$1)+$2;$2=$2+sqrt(-$1);$3=(sqrt(-$1)*2)-($2*1);\
+         $4=sin($1)*cos($2)-tan($2)*2;$5=0*exp(1000)+(-$2)*3;\
+         $6=(sqrt($1)+$2)*(sqrt($2)-$1);$7=-sqrt(-$1)*-sqrt(-$2)+log(-$2);\
+         $8=(1+$1/$2)*($2/$1-1);$9=floor($1)-ceil($2)*(acos($1)+asin($2))",
+        &[
+            "1\tnan",
+            "1\t-nan",
+            "nan\t1",
+            "-nan\t-nan",
+            "-1\t2",
+            "inf\t-inf",
+            "0\t0",
+            "-nan\t1",
+        ],
     );
     // Zero and NaN denominators are the result, with a warning.
     agree(

@@ -295,6 +295,27 @@ fn profile_loop() {
         return;
     };
     let m = module(&[&text, expr], &Env::rcalc());
+    // `RADC_PROFILE_INTERP=1`: the interpreter on the same rows, column by column as
+    // the bench runs it, for instruction counts of both.
+    if std::env::var_os("RADC_PROFILE_INTERP").is_some() {
+        let bodies: Vec<_> = m.outputs().values().map(|o| &o.body).collect();
+        let mut ev = radc_lang::cal::eval::Evaluator::new(&m);
+        let mut sum = 0.0;
+        for i in 0..200_000 {
+            let t = (i % 64) as f64 / 64.0;
+            let row = if which == "cielab" {
+                [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
+            } else {
+                [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
+            };
+            ev.next_record();
+            for body in &bodies {
+                sum += ev.eval_top(body, &mut Cols(&row)).unwrap_or(0.0);
+            }
+        }
+        eprintln!("{sum}");
+        return;
+    }
     let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
     let all = c.entry("$*").expect("entry");
     let mut ctx = c.context();

@@ -152,8 +152,39 @@ fn depth_event(raw: &mut Raw, sym: u32, depth: u64) {
     raw.depth_limit = raw.next_report.min(MAX_DEPTH + 1);
 }
 
+/// Input column `n`, `n >= 1` (the generated code reports `$0` itself).
 extern "C" fn h_chan(raw: *mut Raw, n: u32) -> f64 {
-    channel(raw_mut(raw), n)
+    let raw = raw_mut(raw);
+    if raw.input.is_null() {
+        return channel(raw, n);
+    }
+    // SAFETY: as in `channel`.
+    let input = unsafe { &mut *(raw.input as *mut &mut dyn Input) };
+    match input.column(n) {
+        Ok((v, None)) => {
+            raw.chan_errno = ERRNO_NONE;
+            v
+        }
+        other => column_slow(raw, other),
+    }
+}
+
+/// What `channel` does with a column read that raised `errno` or failed.
+#[cold]
+fn column_slow(raw: &mut Raw, read: Result<(f64, Option<Errno>), EvalError>) -> f64 {
+    match read {
+        Ok((v, errno)) => {
+            raw.chan_errno = errno.map_or(ERRNO_NONE, errno_code);
+            if let Some(e) = errno {
+                raw.errno = errno_code(e);
+            }
+            v
+        }
+        Err(e) => {
+            raw.fail(e);
+            0.0
+        }
+    }
 }
 
 /// The thunk of every argument `$N` (N in the slot's `aux`): one host function
@@ -176,19 +207,8 @@ fn channel(raw: &mut Raw, n: u32) -> f64 {
     // SAFETY: while generated code runs, `input` points at a `&mut dyn Input` on
     // `Compiled::run`'s stack, borrowed for the whole call and used by nobody else.
     let input = unsafe { &mut *(raw.input as *mut &mut dyn Input) };
-    match input.column(n) {
-        Ok((v, errno)) => {
-            raw.chan_errno = errno.map_or(ERRNO_NONE, errno_code);
-            if let Some(e) = errno {
-                raw.errno = errno_code(e);
-            }
-            v
-        }
-        Err(e) => {
-            raw.fail(e);
-            0.0
-        }
-    }
+    let read = input.column(n);
+    column_slow(raw, read)
 }
 
 fn errno_code(e: Errno) -> u64 {

@@ -121,6 +121,16 @@ pub struct Lower<'a, 'b, 'm> {
     undo: Vec<(Key, Option<Value>)>,
     /// Values that are numbers (made by [`Lower::number`]).
     numbers: HashMap<Value, f64>,
+    /// Values that are never a signalling NaN, because the hardware or the C library
+    /// made them (an arithmetic instruction's result, a library function's): see
+    /// [`Lower::nan_first`]. Never a load (which Cranelift may fold into the other
+    /// side of `+` or `*`) nor a negation (`-a * -b` is rewritten to `a * b`).
+    quiet: HashSet<Value>,
+    /// The block in which `errno` was last stored 0 with nothing since (in that
+    /// block) that can change it: no other store of it and no call but the C
+    /// library's. There the store is not repeated and a library call's `errno` test
+    /// is known to pass.
+    errno_clear: Option<ir::Block>,
     /// Inlined calls: frame `k >= 1` is `frames[k - 1]`; frame 0 is the activation
     /// the generated function runs in (`block`, `owner`).
     frames: Vec<Inline<'m>>,
@@ -195,6 +205,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             known_args: HashMap::new(),
             undo: Vec::new(),
             numbers: HashMap::new(),
+            quiet: HashSet::new(),
+            errno_clear: None,
             frames: Vec::new(),
             cur: 0,
             maybe_computed: HashSet::new(),
@@ -261,7 +273,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn f64c(&mut self, v: f64) -> Value {
-        self.b.ins().f64const(v)
+        let c = self.b.ins().f64const(v);
+        self.numbers.insert(c, v);
+        c
     }
 
     fn i64c(&mut self, v: u64) -> Value {
@@ -277,12 +291,26 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     }
 
     fn store_raw(&mut self, v: Value, off: i32) {
+        if off == OFF_ERRNO {
+            self.errno_clear = None;
+        }
         self.b.ins().store(mem(), v, self.raw, off);
     }
 
     fn set_errno(&mut self, e: u64) {
+        if e == ERRNO_NONE && self.errno_is_clear() {
+            return;
+        }
         let v = self.i64c(e);
         self.store_raw(v, OFF_ERRNO);
+        if e == ERRNO_NONE {
+            self.errno_clear = self.b.current_block();
+        }
+    }
+
+    /// Whether `errno` is known to be 0 here (see [`Lower::errno_clear`]).
+    fn errno_is_clear(&self) -> bool {
+        self.errno_clear.is_some() && self.errno_clear == self.b.current_block()
     }
 
     fn func_ref(&mut self, id: FuncId) -> FuncRef {
@@ -297,6 +325,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     fn call_import(&mut self, name: &'static str, args: &[Value]) -> Option<Value> {
         let id = self.st.imports[name];
         let f = self.func_ref(id);
+        self.errno_clear = None;
         let inst = self.b.ins().call(f, args);
         self.b.inst_results(inst).first().copied()
     }
@@ -306,6 +335,17 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             Some(v) => v,
             None => self.f64c(0.0),
         }
+    }
+
+    /// A C library function of `host.rs` (pow, atan2, the unary ones): its result is
+    /// never a signalling NaN (see [`Lower::quiet`]).
+    fn call_lib(&mut self, name: &'static str, args: &[Value]) -> Value {
+        // The C library does not touch the context: `errno` stays as it was.
+        let clear = self.errno_clear;
+        let v = self.call_import_f64(name, args);
+        self.errno_clear = clear;
+        self.quiet.insert(v);
+        v
     }
 
     fn uniform_sig(&mut self) -> SigRef {
@@ -748,7 +788,8 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 self.b.def_var(val, d);
                 self.jump_with(j, d);
                 self.b.switch_to_block(j);
-                out
+                // Every value of `val` is a result of the same call.
+                self.quiet_if(out, &[d])
             }
             None => {
                 let d = call(self);
@@ -787,18 +828,42 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         }
     }
 
+    /// Whether a value is either not a NaN or a quiet NaN made by the hardware or
+    /// the C library ([`Lower::quiet`]), never a signalling NaN.
+    fn is_quiet(&self, v: Value) -> bool {
+        self.not_nan(v) || self.quiet.contains(&v)
+    }
+
+    /// Mark `v` as [`Lower::is_quiet`] when every value it can be is.
+    fn quiet_if(&mut self, v: Value, parts: &[Value]) -> Value {
+        if parts.iter().all(|&p| self.is_quiet(p)) {
+            self.quiet.insert(v);
+        }
+        v
+    }
+
     /// `Evaluator`'s `nan_first`: with a NaN operand, the first NaN operand itself
     /// (x86 keeps the destination's NaN, and the order is the reference rcalc's);
     /// otherwise the computed result.
+    ///
+    /// The SSE/AVX instruction `result` was computed by (`first op second`) already
+    /// gives that for quiet NaNs: the first source operand if it is a NaN, else the
+    /// second, each unchanged when quiet (only a signalling NaN is changed, to its
+    /// quiet form). So a test is needed only for an operand that may be a
+    /// signalling NaN (an input column, a variable's cached value, a parameter): the
+    /// second's when it may be one, and then the first's too (unless a number), so
+    /// that a NaN first still wins over the second's select.
     fn nan_first(&mut self, first: Value, second: Value, result: Value) -> Value {
-        let r = if self.not_nan(second) {
+        self.quiet.insert(result);
+        let second_quiet = self.is_quiet(second);
+        let r = if second_quiet {
             result
         } else {
             let second_nan = self.b.ins().fcmp(FloatCC::Unordered, second, second);
             self.b.ins().select(second_nan, second, result)
         };
-        if self.not_nan(first) {
-            return r;
+        if self.not_nan(first) || (second_quiet && self.is_quiet(first)) {
+            return self.quiet_if(r, &[first, second]);
         }
         let first_nan = self.b.ins().fcmp(FloatCC::Unordered, first, first);
         self.b.ins().select(first_nan, first, r)
@@ -815,7 +880,11 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         {
             let num = self.expr(a)?;
             let k = self.op_key(OP_DIV, num, den);
-            return Ok(self.memo(k, |lw| lw.b.ins().fdiv(num, den)));
+            return Ok(self.memo(k, |lw| {
+                let q = lw.b.ins().fdiv(num, den);
+                lw.quiet.insert(q);
+                q
+            }));
         }
         let zero = self.f64c(0.0);
         let is_zero = self.b.ins().fcmp(FloatCC::UnorderedOrEqual, den, zero);
@@ -831,9 +900,10 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let num = self.expr(a)?;
         self.rewind(known);
         let q = self.b.ins().fdiv(num, den);
+        self.quiet.insert(q);
         self.jump_with(j, q);
         self.b.switch_to_block(j);
-        Ok(out)
+        Ok(self.quiet_if(out, &[den]))
     }
 
     /// calexpr.c `epow`: `errno` cleared, both sides (the exponent first: the
@@ -855,12 +925,15 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         let y = self.expr(b)?;
         let x = self.expr(a)?;
         let key = Key::Pow(self.vn(x), self.vn(y));
-        let d = self.pure_call(key, |lw| lw.call_import_f64("radc_pow", &[x, y]));
+        let d = self.pure_call(key, |lw| lw.call_lib("radc_pow", &[x, y]));
         // As for library functions: pure operands leave `errno` clear.
         if pure && self.st.policy != MathErrors::NonFinite {
             return Ok(d);
         }
         self.nonfinite(d);
+        if self.errno_is_clear() {
+            return Ok(d);
+        }
         let errno = self.load_raw(types::I64, OFF_ERRNO);
         let (j, out) = self.join();
         let (bad, ok) = self.cold_branch(errno);
@@ -872,7 +945,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(ok);
         self.jump_with(j, d);
         self.b.switch_to_block(j);
-        Ok(out)
+        Ok(self.quiet_if(out, &[d]))
     }
 
     /// `MathErrors::NonFinite`: NaN is a domain error, infinity a range error.
@@ -933,6 +1006,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         if is_constant(module, def) && self.st.warn_nonconstant {
             // Every read warns: nothing to reuse.
             self.sync_depth();
+            self.errno_clear = None;
             let inst = self.b.ins().call(f, &[self.raw]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -1001,6 +1075,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.jump_with(j, v);
         self.b.switch_to_block(miss);
         self.sync_depth();
+        self.errno_clear = None;
         let inst = self.b.ins().call(f, &[self.raw]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
@@ -1055,6 +1130,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             .b
             .ins()
             .call_indirect(sig, thunk, &[self.raw, parent, slot]);
+        self.errno_clear = None;
         let v = self.b.inst_results(inst)[0];
         self.add_depth(1);
         self.check_failed();
@@ -1206,6 +1282,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
             let block = self.build_block(args, CalleeName::Static(s), fill)?;
             let f = self.func_ref(fid);
             self.sync_depth();
+            self.errno_clear = None;
             let inst = self.b.ins().call(f, &[self.raw, block]);
             let v = self.b.inst_results(inst)[0];
             self.check_failed();
@@ -1259,6 +1336,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(direct);
         let sig = self.uniform_sig();
         self.sync_depth();
+        self.errno_clear = None;
         let inst = self.b.ins().call_indirect(sig, fp, &[self.raw, new_block]);
         let v = self.b.inst_results(inst)[0];
         self.check_failed();
@@ -1534,6 +1612,9 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
     /// calfunc.c `libfunc`'s epilogue: a raised `errno` warns and gives 0.
     fn lib_result(&mut self, d: Value, sym: u32) -> Value {
         self.nonfinite(d);
+        if self.errno_is_clear() {
+            return d;
+        }
         let errno = self.load_raw(types::I64, OFF_ERRNO);
         let (j, out) = self.join();
         let (bad, ok) = self.cold_branch(errno);
@@ -1551,7 +1632,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
         self.b.switch_to_block(ok);
         self.jump_with(j, d);
         self.b.switch_to_block(j);
-        out
+        self.quiet_if(out, &[d])
     }
 
     fn builtin(&mut self, b: Builtin, sym: u32, args: &'m [Expr]) -> R<Value> {
@@ -1682,7 +1763,7 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
 
     fn atan2(&mut self, y: Value, x: Value) -> Value {
         let key = Key::Atan2(self.vn(y), self.vn(x));
-        self.pure_call(key, |lw| lw.call_import_f64("radc_atan2", &[y, x]))
+        self.pure_call(key, |lw| lw.call_lib("radc_atan2", &[y, x]))
     }
 
     /// A one-argument C library function, inline where it is one instruction.
@@ -1696,13 +1777,19 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 };
                 let zero = self.f64c(0.0);
                 let is_zero = self.b.ins().fcmp(FloatCC::Equal, r, zero);
-                self.b.ins().select(is_zero, zero, r)
+                let v = self.b.ins().select(is_zero, zero, r);
+                self.quiet.insert(v);
+                v
             }
-            Builtin::Sqrt => self.b.ins().sqrt(x),
+            Builtin::Sqrt => {
+                let v = self.b.ins().sqrt(x);
+                self.quiet.insert(v);
+                v
+            }
             other => {
                 let key = Key::Call(other, self.vn(x));
                 self.pure_call(key, |lw| match unary_symbol(other) {
-                    Some(name) => lw.call_import_f64(name, &[x]),
+                    Some(name) => lw.call_lib(name, &[x]),
                     None => lw.f64c(0.0),
                 })
             }

@@ -305,8 +305,6 @@ pub struct Context {
     hosts: Vec<f64>,
     owner: u64,
     stack_budget: usize,
-    /// Where an outputs entry stores its columns.
-    outs: Vec<f64>,
 }
 
 impl Context {
@@ -395,7 +393,6 @@ impl Compiled {
             hosts: vec![0.0; self.host_names.len()],
             owner: self.id,
             stack_budget: DEFAULT_STACK_BUDGET,
-            outs: Vec::new(),
         }
     }
 
@@ -420,13 +417,19 @@ impl Compiled {
                 "a context made for another compiled program".into(),
             ));
         }
-        ctx.outs.resize(n, 0.0);
-        ctx.raw.out = ctx.outs.as_mut_ptr();
+        // The generated code stores straight into `out`'s spare capacity.
+        out.reserve(n);
+        let len = out.len();
+        // SAFETY: `reserve` made room for `n` more values after the `len` there.
+        ctx.raw.out = unsafe { out.as_mut_ptr().add(len) };
         ctx.raw.done = 0;
         let result = self.run(EntryCode::Value(p), &[], ctx, input);
         ctx.raw.out = std::ptr::null_mut();
         let done = (ctx.raw.done as usize).min(n);
-        out.extend_from_slice(&ctx.outs[..done]);
+        // SAFETY: the generated code stores column `k` (`k < n`, within the spare
+        // capacity) and then sets `done` to `k + 1`, for each `k` from 0 in turn, so
+        // the first `done` values after `len` are initialised.
+        unsafe { out.set_len(len + done) };
         result.map(|_| ())
     }
 
