@@ -127,6 +127,12 @@ pub enum Target {
     Distant(u32),
 }
 
+thread_local! {
+    /// [`Tracer::direct`]'s source samples, kept between calls.
+    static SAMPLE_BUFFER: std::cell::RefCell<Vec<SourceSample>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
 #[derive(Clone, Debug)]
 pub struct RayState {
@@ -673,7 +679,10 @@ impl<'a> Tracer<'a> {
     /// Adds the direct contribution of every source to `r` (`direct()`), `coef` giving
     /// the material's coefficient for a source sample direction and solid angle.
     pub fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
-        let mut samples: Vec<SourceSample> = Vec::new();
+        // The thread's sample buffer, taken for this call so that no call allocates
+        // once it has grown (a nested call, through a shadow ray, finds it empty and
+        // uses a fresh one).
+        let mut samples = SAMPLE_BUFFER.with(|b| std::mem::take(&mut *b.borrow_mut()));
         for (si, s) in self.scene.sources.iter().enumerate() {
             samples.clear();
             let jitter = (self.options.source_jitter > 0.0).then(|| {
@@ -700,6 +709,8 @@ impl<'a> Tracer<'a> {
                 }
             }
         }
+        samples.clear();
+        SAMPLE_BUFFER.with(|b| *b.borrow_mut() = samples);
     }
 
     /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
