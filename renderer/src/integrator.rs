@@ -721,6 +721,10 @@ impl<'a> Tracer<'a> {
         sr.source = Some(si);
         sr.coef = c;
         let source = self.scene.sources.get(si)?;
+        // Whether `sr` has been shaded as the source (`source_value`, which then needs
+        // no copy of it) and must be made afresh to shade a blocker.
+        let mut shaded = false;
+        let ray = Ray::new(sr.org, sr.dir);
         let value = if source.parent.is_some() {
             // A virtual source: the ray must meet its mirror; the path through the mirror
             // to the source it images is then always followed (Radiance follows it
@@ -731,23 +735,31 @@ impl<'a> Tracer<'a> {
             self.scene
                 .object(mirror)?
                 .shape
-                .intersect(&Ray::new(sr.org, sr.dir))?;
+                .intersect(&ray)?;
             None
         } else {
             // The source's own value, from the source surface alone (`srcvalue`).
-            Some(self.source_value(&sr, si)? * c)
+            shaded = true;
+            Some(self.source_value(&mut sr, si)? * c)
         };
         if self.scene.opaque_to_shadows && matches!(source.target, SourceTarget::Distant(_)) {
             // Whatever it hits shades it black (`Scene::opaque_to_shadows`), and the
             // distant source is no surface: the first hit found decides.
-            return (!self.hits_anything(&Ray::new(sr.org, sr.dir))).then_some(value?);
+            return (!self.hits_anything(&ray)).then_some(value?);
         }
-        match self.nearest(&Ray::new(sr.org, sr.dir), f64::INFINITY) {
+        match self.nearest(&ray, f64::INFINITY) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {
                 // Something is in the way (or a mirror to follow): shade it as a shadow
                 // ray would see it.
+                if shaded {
+                    // The same ray as above: `spawn` depends on `r` and `kind` alone.
+                    sr = self.spawn(r, RayKind::SHADOW, None)?;
+                    sr.dir = dir;
+                    sr.source = Some(si);
+                    sr.coef = c;
+                }
                 sr.hit = Target::Object(ObjectId(h.object));
                 sr.length = h.t;
                 sr.point = sr.org + sr.dir * h.t;
@@ -761,26 +773,28 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    fn source_value(&self, sr: &RayState, si: usize) -> Option<Color> {
+    /// The value of source `si` seen along shadow ray `probe`, shading `probe` as the
+    /// source surface (what it held of a hit is overwritten).
+    fn source_value(&self, probe: &mut RayState, si: usize) -> Option<Color> {
         let s = self.scene.sources.get(si)?;
-        let mut probe = sr.clone();
+        let (org, dir) = (probe.org, probe.dir);
         match s.target {
             SourceTarget::Object(o) => {
                 let obj = self.scene.object(o)?;
-                let h = obj.shape.intersect(&Ray::new(sr.org, sr.dir))?;
+                let h = obj.shape.intersect(&Ray::new(org, dir))?;
                 probe.hit = Target::Object(ObjectId(o));
                 probe.length = h.t;
-                probe.point = sr.org + sr.dir * h.t;
+                probe.point = org + dir * h.t;
                 probe.normal = h.normal;
                 probe.rod = h.rod;
-                self.shade(&mut probe, obj.material);
+                self.shade(probe, obj.material);
             }
             SourceTarget::Distant(d) => {
                 probe.hit = Target::Distant(d);
-                self.shade(&mut probe, self.scene.distant.get(d as usize)?.material);
+                self.shade(probe, self.scene.distant.get(d as usize)?.material);
             }
         }
-        participate(&mut probe);
+        participate(probe);
         Some(probe.color)
     }
 }
