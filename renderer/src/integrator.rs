@@ -732,10 +732,7 @@ impl<'a> Tracer<'a> {
             let SourceTarget::Object(mirror) = source.target else {
                 return None;
             };
-            self.scene
-                .object(mirror)?
-                .shape
-                .intersect(&ray)?;
+            self.scene.object(mirror)?.shape.intersect(&ray)?;
             None
         } else {
             // The source's own value, from the source surface alone (`srcvalue`).
