@@ -482,73 +482,93 @@ impl<'a> Tracer<'a> {
             return None;
         }
         let rw = coef.map_or(1.0, |c| intensity(c).min(1.0));
-        let mut child = RayState::primary(r.point, r.dir);
-        child.kind = r.kind | kind;
-        child.coef = coef.unwrap_or(Color::ONE);
-        child.weight = r.weight * rw;
-        child.extinction = r.extinction;
-        child.path_length = r.path_length + r.length;
-        child.max_distance = if kind.reflects() || r.max_distance <= FTINY {
-            0.0
-        } else {
-            r.max_distance - r.length
-        };
-        child.clipset = if kind.reflects() {
-            r.clipset.clone()
-        } else {
-            r.new_clipset.clone().unwrap_or_else(|| r.clipset.clone())
-        };
-        child.passages = r.passages.clone();
-        if !kind.reflects()
-            && let Target::Object(o) = r.hit
-            && let Some(obj) = self.scene.object(o.0)
-        {
-            child.passages.push((obj.modifier, r.rod > 0.0));
-        }
+        let reflects = kind.reflects();
+        let child_kind = r.kind | kind;
+        let mut child_coef = coef.unwrap_or(Color::ONE);
+        let mut weight = r.weight * rw;
         // The parent's path through an absorbing medium weakens what follows it.
         let re = r.extinction.min_element() * r.length;
         if re > 0.1 {
-            child.weight = if re > 92.0 {
-                0.0
-            } else {
-                child.weight * (-re).exp()
-            };
+            weight = if re > 92.0 { 0.0 } else { weight * (-re).exp() };
         }
-        child.level = r.level + u32::from(kind.reflects());
-        child.depth = r.depth + 1;
-        child.seed = crate::random::derive(r.seed, salt);
-        child.ambient_depth = r.ambient_depth + u32::from(kind == RayKind::AMBIENT);
-        if child.depth > MAX_CHAIN {
+        let level = r.level + u32::from(reflects);
+        let depth = r.depth + 1;
+        let seed = crate::random::derive(r.seed, salt);
+        if depth > MAX_CHAIN {
             return None;
         }
-        child.source = if kind.reflects() { None } else { r.source };
-        if child.weight <= 0.0 || child.weight.is_nan() {
+        if weight <= 0.0 || weight.is_nan() {
             return None;
         }
-        if child.kind.any(RayKind::SHADOW) {
-            return Some(child);
-        }
-        let o = &self.options;
-        let limit = o.max_depth.unsigned_abs();
-        let ok = if o.max_depth <= 0 && coef.is_some() {
-            if o.max_depth < 0 && child.level > limit {
-                return None;
-            }
-            if child.weight < o.min_weight && o.russian_roulette && o.min_weight > 0.0 {
-                // Survivors are promoted to the limit weight, their coefficient scaled to
-                // keep the estimate unbiased.
-                let keep = child.weight / o.min_weight;
-                if crate::random::uniform(child.seed, ROULETTE) >= keep {
+        if !child_kind.any(RayKind::SHADOW) {
+            let o = &self.options;
+            let limit = o.max_depth.unsigned_abs();
+            let ok = if o.max_depth <= 0 && coef.is_some() {
+                if o.max_depth < 0 && level > limit {
                     return None;
                 }
-                child.coef /= keep;
-                child.weight = o.min_weight;
+                if weight < o.min_weight && o.russian_roulette && o.min_weight > 0.0 {
+                    // Survivors are promoted to the limit weight, their coefficient
+                    // scaled to keep the estimate unbiased.
+                    let keep = weight / o.min_weight;
+                    if crate::random::uniform(seed, ROULETTE) >= keep {
+                        return None;
+                    }
+                    child_coef /= keep;
+                    weight = o.min_weight;
+                }
+                weight >= o.min_weight
+            } else {
+                weight >= o.min_weight && level <= limit
+            };
+            if !ok {
+                return None;
             }
-            child.weight >= o.min_weight
-        } else {
-            child.weight >= o.min_weight && child.level <= limit
-        };
-        ok.then_some(child)
+        }
+        let mut passages = r.passages.clone();
+        if !reflects
+            && let Target::Object(o) = r.hit
+            && let Some(obj) = self.scene.object(o.0)
+        {
+            passages.push((obj.modifier, r.rod > 0.0));
+        }
+        // Built once all is decided, in place (no ray state copied on the way out).
+        Some(RayState {
+            org: r.point,
+            dir: r.dir,
+            kind: child_kind,
+            weight,
+            level,
+            depth,
+            coef: child_coef,
+            source: if reflects { None } else { r.source },
+            hit: Target::None,
+            length: FHUGE,
+            point: r.point,
+            normal: -r.dir,
+            rod: 1.0,
+            flips: 0,
+            color: Color::ZERO,
+            mirror_color: Color::ZERO,
+            mirror_length: FHUGE,
+            other_length: FHUGE,
+            extinction: r.extinction,
+            path_length: r.path_length + r.length,
+            max_distance: if reflects || r.max_distance <= FTINY {
+                0.0
+            } else {
+                r.max_distance - r.length
+            },
+            clipset: if reflects {
+                r.clipset.clone()
+            } else {
+                r.new_clipset.clone().unwrap_or_else(|| r.clipset.clone())
+            },
+            new_clipset: None,
+            passages,
+            seed,
+            ambient_depth: r.ambient_depth + u32::from(kind == RayKind::AMBIENT),
+        })
     }
 
     /// The nearest surface along `ray`, with Radiance's tie rules for surfaces within
