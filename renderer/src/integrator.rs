@@ -736,7 +736,9 @@ impl<'a> Tracer<'a> {
     /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
     /// blocked.
     fn source_contribution(&self, r: &RayState, si: usize, dir: Vec3, c: Color) -> Option<Color> {
-        let mut sr = self.spawn(r, RayKind::SHADOW, None)?;
+        // Worked on inside its `Option` (moving it out would copy the whole state).
+        let mut spawned = self.spawn(r, RayKind::SHADOW, None);
+        let sr = spawned.as_mut()?;
         sr.dir = dir;
         sr.source = Some(si);
         sr.coef = c;
@@ -757,7 +759,7 @@ impl<'a> Tracer<'a> {
         } else {
             // The source's own value, from the source surface alone (`srcvalue`).
             shaded = true;
-            Some(self.source_value(&mut sr, si)? * c)
+            Some(self.source_value(sr, si)? * c)
         };
         if self.scene.opaque_to_shadows && matches!(source.target, SourceTarget::Distant(_)) {
             // Whatever it hits shades it black (`Scene::opaque_to_shadows`), and the
@@ -772,7 +774,7 @@ impl<'a> Tracer<'a> {
                 // ray would see it.
                 if shaded {
                     // The same ray as above: `spawn` depends on `r` and `kind` alone.
-                    sr = self.spawn(r, RayKind::SHADOW, None)?;
+                    *sr = self.spawn(r, RayKind::SHADOW, None)?;
                     sr.dir = dir;
                     sr.source = Some(si);
                     sr.coef = c;
@@ -782,8 +784,8 @@ impl<'a> Tracer<'a> {
                 sr.point = sr.org + sr.dir * h.t;
                 sr.normal = h.normal;
                 sr.rod = h.rod;
-                self.shade_object(&mut sr, h.object);
-                participate(&mut sr);
+                self.shade_object(sr, h.object);
+                participate(sr);
                 let mean = (sr.color.x + sr.color.y + sr.color.z) / 3.0;
                 (mean > FTINY).then(|| sr.color * c)
             }
