@@ -127,6 +127,12 @@ pub enum Target {
     Distant(u32),
 }
 
+thread_local! {
+    /// [`Tracer::direct`]'s source samples, kept between calls.
+    static SAMPLE_BUFFER: std::cell::RefCell<Vec<SourceSample>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
 #[derive(Clone, Debug)]
 pub struct RayState {
@@ -476,73 +482,93 @@ impl<'a> Tracer<'a> {
             return None;
         }
         let rw = coef.map_or(1.0, |c| intensity(c).min(1.0));
-        let mut child = RayState::primary(r.point, r.dir);
-        child.kind = r.kind | kind;
-        child.coef = coef.unwrap_or(Color::ONE);
-        child.weight = r.weight * rw;
-        child.extinction = r.extinction;
-        child.path_length = r.path_length + r.length;
-        child.max_distance = if kind.reflects() || r.max_distance <= FTINY {
-            0.0
-        } else {
-            r.max_distance - r.length
-        };
-        child.clipset = if kind.reflects() {
-            r.clipset.clone()
-        } else {
-            r.new_clipset.clone().unwrap_or_else(|| r.clipset.clone())
-        };
-        child.passages = r.passages.clone();
-        if !kind.reflects()
-            && let Target::Object(o) = r.hit
-            && let Some(obj) = self.scene.object(o.0)
-        {
-            child.passages.push((obj.modifier, r.rod > 0.0));
-        }
+        let reflects = kind.reflects();
+        let child_kind = r.kind | kind;
+        let mut child_coef = coef.unwrap_or(Color::ONE);
+        let mut weight = r.weight * rw;
         // The parent's path through an absorbing medium weakens what follows it.
         let re = r.extinction.min_element() * r.length;
         if re > 0.1 {
-            child.weight = if re > 92.0 {
-                0.0
-            } else {
-                child.weight * (-re).exp()
-            };
+            weight = if re > 92.0 { 0.0 } else { weight * (-re).exp() };
         }
-        child.level = r.level + u32::from(kind.reflects());
-        child.depth = r.depth + 1;
-        child.seed = crate::random::derive(r.seed, salt);
-        child.ambient_depth = r.ambient_depth + u32::from(kind == RayKind::AMBIENT);
-        if child.depth > MAX_CHAIN {
+        let level = r.level + u32::from(reflects);
+        let depth = r.depth + 1;
+        let seed = crate::random::derive(r.seed, salt);
+        if depth > MAX_CHAIN {
             return None;
         }
-        child.source = if kind.reflects() { None } else { r.source };
-        if child.weight <= 0.0 || child.weight.is_nan() {
+        if weight <= 0.0 || weight.is_nan() {
             return None;
         }
-        if child.kind.any(RayKind::SHADOW) {
-            return Some(child);
-        }
-        let o = &self.options;
-        let limit = o.max_depth.unsigned_abs();
-        let ok = if o.max_depth <= 0 && coef.is_some() {
-            if o.max_depth < 0 && child.level > limit {
-                return None;
-            }
-            if child.weight < o.min_weight && o.russian_roulette && o.min_weight > 0.0 {
-                // Survivors are promoted to the limit weight, their coefficient scaled to
-                // keep the estimate unbiased.
-                let keep = child.weight / o.min_weight;
-                if crate::random::uniform(child.seed, ROULETTE) >= keep {
+        if !child_kind.any(RayKind::SHADOW) {
+            let o = &self.options;
+            let limit = o.max_depth.unsigned_abs();
+            let ok = if o.max_depth <= 0 && coef.is_some() {
+                if o.max_depth < 0 && level > limit {
                     return None;
                 }
-                child.coef /= keep;
-                child.weight = o.min_weight;
+                if weight < o.min_weight && o.russian_roulette && o.min_weight > 0.0 {
+                    // Survivors are promoted to the limit weight, their coefficient
+                    // scaled to keep the estimate unbiased.
+                    let keep = weight / o.min_weight;
+                    if crate::random::uniform(seed, ROULETTE) >= keep {
+                        return None;
+                    }
+                    child_coef /= keep;
+                    weight = o.min_weight;
+                }
+                weight >= o.min_weight
+            } else {
+                weight >= o.min_weight && level <= limit
+            };
+            if !ok {
+                return None;
             }
-            child.weight >= o.min_weight
-        } else {
-            child.weight >= o.min_weight && child.level <= limit
-        };
-        ok.then_some(child)
+        }
+        let mut passages = r.passages.clone();
+        if !reflects
+            && let Target::Object(o) = r.hit
+            && let Some(obj) = self.scene.object(o.0)
+        {
+            passages.push((obj.modifier, r.rod > 0.0));
+        }
+        // Built once all is decided, in place (no ray state copied on the way out).
+        Some(RayState {
+            org: r.point,
+            dir: r.dir,
+            kind: child_kind,
+            weight,
+            level,
+            depth,
+            coef: child_coef,
+            source: if reflects { None } else { r.source },
+            hit: Target::None,
+            length: FHUGE,
+            point: r.point,
+            normal: -r.dir,
+            rod: 1.0,
+            flips: 0,
+            color: Color::ZERO,
+            mirror_color: Color::ZERO,
+            mirror_length: FHUGE,
+            other_length: FHUGE,
+            extinction: r.extinction,
+            path_length: r.path_length + r.length,
+            max_distance: if reflects || r.max_distance <= FTINY {
+                0.0
+            } else {
+                r.max_distance - r.length
+            },
+            clipset: if reflects {
+                r.clipset.clone()
+            } else {
+                r.new_clipset.clone().unwrap_or_else(|| r.clipset.clone())
+            },
+            new_clipset: None,
+            passages,
+            seed,
+            ambient_depth: r.ambient_depth + u32::from(kind == RayKind::AMBIENT),
+        })
     }
 
     /// The nearest surface along `ray`, with Radiance's tie rules for surfaces within
@@ -673,7 +699,10 @@ impl<'a> Tracer<'a> {
     /// Adds the direct contribution of every source to `r` (`direct()`), `coef` giving
     /// the material's coefficient for a source sample direction and solid angle.
     pub fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
-        let mut samples: Vec<SourceSample> = Vec::new();
+        // The thread's sample buffer, taken for this call so that no call allocates
+        // once it has grown (a nested call, through a shadow ray, finds it empty and
+        // uses a fresh one).
+        let mut samples = SAMPLE_BUFFER.with(|b| std::mem::take(&mut *b.borrow_mut()));
         for (si, s) in self.scene.sources.iter().enumerate() {
             samples.clear();
             let jitter = (self.options.source_jitter > 0.0).then(|| {
@@ -700,16 +729,24 @@ impl<'a> Tracer<'a> {
                 }
             }
         }
+        samples.clear();
+        SAMPLE_BUFFER.with(|b| *b.borrow_mut() = samples);
     }
 
     /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
     /// blocked.
     fn source_contribution(&self, r: &RayState, si: usize, dir: Vec3, c: Color) -> Option<Color> {
-        let mut sr = self.spawn(r, RayKind::SHADOW, None)?;
+        // Worked on inside its `Option` (moving it out would copy the whole state).
+        let mut spawned = self.spawn(r, RayKind::SHADOW, None);
+        let sr = spawned.as_mut()?;
         sr.dir = dir;
         sr.source = Some(si);
         sr.coef = c;
         let source = self.scene.sources.get(si)?;
+        // Whether `sr` has been shaded as the source (`source_value`, which then needs
+        // no copy of it) and must be made afresh to shade a blocker.
+        let mut shaded = false;
+        let ray = Ray::new(sr.org, sr.dir);
         let value = if source.parent.is_some() {
             // A virtual source: the ray must meet its mirror; the path through the mirror
             // to the source it images is then always followed (Radiance follows it
@@ -717,59 +754,66 @@ impl<'a> Tracer<'a> {
             let SourceTarget::Object(mirror) = source.target else {
                 return None;
             };
-            self.scene
-                .object(mirror)?
-                .shape
-                .intersect(&Ray::new(sr.org, sr.dir))?;
+            self.scene.object(mirror)?.shape.intersect(&ray)?;
             None
         } else {
             // The source's own value, from the source surface alone (`srcvalue`).
-            Some(self.source_value(&sr, si)? * c)
+            shaded = true;
+            Some(self.source_value(sr, si)? * c)
         };
         if self.scene.opaque_to_shadows && matches!(source.target, SourceTarget::Distant(_)) {
             // Whatever it hits shades it black (`Scene::opaque_to_shadows`), and the
             // distant source is no surface: the first hit found decides.
-            return (!self.hits_anything(&Ray::new(sr.org, sr.dir))).then_some(value?);
+            return (!self.hits_anything(&ray)).then_some(value?);
         }
-        match self.nearest(&Ray::new(sr.org, sr.dir), f64::INFINITY) {
+        match self.nearest(&ray, f64::INFINITY) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {
                 // Something is in the way (or a mirror to follow): shade it as a shadow
                 // ray would see it.
+                if shaded {
+                    // The same ray as above: `spawn` depends on `r` and `kind` alone.
+                    *sr = self.spawn(r, RayKind::SHADOW, None)?;
+                    sr.dir = dir;
+                    sr.source = Some(si);
+                    sr.coef = c;
+                }
                 sr.hit = Target::Object(ObjectId(h.object));
                 sr.length = h.t;
                 sr.point = sr.org + sr.dir * h.t;
                 sr.normal = h.normal;
                 sr.rod = h.rod;
-                self.shade_object(&mut sr, h.object);
-                participate(&mut sr);
+                self.shade_object(sr, h.object);
+                participate(sr);
                 let mean = (sr.color.x + sr.color.y + sr.color.z) / 3.0;
                 (mean > FTINY).then(|| sr.color * c)
             }
         }
     }
 
-    fn source_value(&self, sr: &RayState, si: usize) -> Option<Color> {
+    /// The value of source `si` seen along shadow ray `probe`, shading `probe` as the
+    /// source surface (what it held of a hit is overwritten).
+    fn source_value(&self, probe: &mut RayState, si: usize) -> Option<Color> {
         let s = self.scene.sources.get(si)?;
-        let mut probe = sr.clone();
+        let (org, dir) = (probe.org, probe.dir);
         match s.target {
             SourceTarget::Object(o) => {
                 let obj = self.scene.object(o)?;
-                let h = obj.shape.intersect(&Ray::new(sr.org, sr.dir))?;
+                let h = obj.shape.intersect(&Ray::new(org, dir))?;
                 probe.hit = Target::Object(ObjectId(o));
                 probe.length = h.t;
-                probe.point = sr.org + sr.dir * h.t;
+                probe.point = org + dir * h.t;
                 probe.normal = h.normal;
                 probe.rod = h.rod;
-                self.shade(&mut probe, obj.material);
+                self.shade(probe, obj.material);
             }
             SourceTarget::Distant(d) => {
                 probe.hit = Target::Distant(d);
-                self.shade(&mut probe, self.scene.distant.get(d as usize)?.material);
+                self.shade(probe, self.scene.distant.get(d as usize)?.material);
             }
         }
-        participate(&mut probe);
+        participate(probe);
         Some(probe.color)
     }
 }

@@ -583,6 +583,13 @@ impl Source {
         jitter: Option<(f64, u64)>,
         out: &mut Vec<SourceSample>,
     ) {
+        // The k-th partition's jitter offsets.
+        let offset = |k: usize| {
+            jitter.map(|(j, seed)| {
+                let seed = crate::random::derive(seed, k as u64);
+                [0u64, 1, 2].map(|a| j * (1.0 - 2.0 * crate::random::uniform(seed, a)))
+            })
+        };
         let parts = match &self.shape {
             SourceShape::Flat {
                 center,
@@ -606,15 +613,17 @@ impl Source {
                     None => return, // inside the cylinder's extent
                 }
             }
-            _ => vec![WHOLE],
+            _ => {
+                // One partition, the whole source: no list to build.
+                if let Some(s) = self.sample(org, WHOLE, 1, offset(0)) {
+                    out.push(s);
+                }
+                return;
+            }
         };
         let np = parts.len();
         for (k, p) in parts.into_iter().enumerate() {
-            let offset = jitter.map(|(j, seed)| {
-                let seed = crate::random::derive(seed, k as u64);
-                [0u64, 1, 2].map(|a| j * (1.0 - 2.0 * crate::random::uniform(seed, a)))
-            });
-            if let Some(s) = self.sample(org, p, np, offset) {
+            if let Some(s) = self.sample(org, p, np, offset(k)) {
                 out.push(s);
             }
         }
