@@ -21,6 +21,10 @@ use radc_lang::cal::{Env, Module};
 use std::hint::black_box;
 use std::path::PathBuf;
 
+#[path = "../tests/support/library.rs"]
+mod library;
+use library::library_programs;
+
 /// The machine is shared: wall-clock time mostly measures the other processes, so
 /// this bench measures the thread's own CPU time (`CLOCK_THREAD_CPUTIME_ID`; the
 /// first field of `/proc/thread-self/schedstat`, used before, reads 0 on kernels
@@ -287,50 +291,14 @@ fn bench(c: &mut Criterion<CpuTime>) {
     }
 }
 
-/// One program per library file: `rayinit.cal` then the file, with every name the
-/// file defines as an entry point.
-fn library_programs(lib: &PathBuf) -> Vec<(Module, Vec<String>)> {
-    let Ok(rayinit) = std::fs::read_to_string(lib.join("rayinit.cal")) else {
-        return Vec::new();
-    };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(lib)
-        .map(|d| d.filter_map(Result::ok).map(|e| e.path()).collect())
-        .unwrap_or_default();
-    files.retain(|f| f.extension().is_some_and(|x| x == "cal"));
-    files.sort();
-    let mut out = Vec::new();
-    for f in files {
-        let Ok(text) = std::fs::read_to_string(&f) else {
-            continue;
-        };
-        let mut m = Module::new(&Env::renderer());
-        m.add_source(FileId(0), &rayinit);
-        let d = m.add_source(FileId(1), &text);
-        if d.iter().any(|d| d.is_error()) {
-            continue;
-        }
-        m.optimize();
-        let mut names: Vec<String> = m
-            .symbols()
-            .iter()
-            .filter(|s| {
-                s.stack
-                    .last()
-                    .is_some_and(|&d| m.def(d).span.file == FileId(1))
-            })
-            .map(|s| s.name.clone())
-            .collect();
-        names.dedup();
-        out.push((m, names));
-    }
-    out
-}
-
 fn bench_library(c: &mut Criterion<CpuTime>) {
     let Some(lib) = library_dir() else {
         return;
     };
-    let programs = library_programs(&lib);
+    let programs: Vec<(Module, Vec<String>)> = library_programs(&lib)
+        .into_iter()
+        .map(|(_, m, names)| (m, names))
+        .collect();
     let mut functions = 0;
     let mut entries = 0;
     let mut instructions = 0;

@@ -11,6 +11,10 @@ use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::{Env, Module};
 use std::path::PathBuf;
 
+#[path = "support/library.rs"]
+mod library;
+use library::library_programs;
+
 fn module(sources: &[&str], env: &Env) -> Module {
     let mut m = Module::new(env);
     for (i, s) in sources.iter().enumerate() {
@@ -152,48 +156,6 @@ fn xyz_rgb_compiles_small() {
     // 11,207 with the default budget (1000 nodes); 34,325 at 3000 nodes, which
     // took 84 ms to compile; 130,000 with no budget.
     assert!(n < 16_000, "{n} instructions");
-}
-
-/// One program per library file, every name it defines an entry point, after
-/// `rayinit.cal` (as the bench's "library compile" group).
-fn library_programs(lib: &std::path::Path) -> Vec<(String, Module, Vec<String>)> {
-    let Ok(rayinit) = std::fs::read_to_string(lib.join("rayinit.cal")) else {
-        return Vec::new();
-    };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(lib)
-        .map(|d| d.filter_map(Result::ok).map(|e| e.path()).collect())
-        .unwrap_or_default();
-    files.retain(|f| f.extension().is_some_and(|x| x == "cal"));
-    files.sort();
-    let mut out = Vec::new();
-    for f in files {
-        let Ok(text) = std::fs::read_to_string(&f) else {
-            continue;
-        };
-        let mut m = Module::new(&Env::renderer());
-        m.add_source(FileId(0), &rayinit);
-        let d = m.add_source(FileId(1), &text);
-        if d.iter().any(|d| d.is_error()) {
-            continue;
-        }
-        m.optimize();
-        let names: Vec<String> = m
-            .symbols()
-            .iter()
-            .filter(|s| {
-                s.stack
-                    .last()
-                    .is_some_and(|&d| m.def(d).span.file == FileId(1))
-            })
-            .map(|s| s.name.clone())
-            .collect();
-        let name = f
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        out.push((name, m, names));
-    }
-    out
 }
 
 /// Every library file, every definition an entry point: none generates more than a
