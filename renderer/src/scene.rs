@@ -156,6 +156,20 @@ impl Scene {
                 return Err("a light source refers to a surface out of range".into());
             }
         }
+        // Alternates are compiled before the materials that name them, so a chain
+        // always ends; a loop (only a damaged file has one) would recurse forever.
+        for start in &self.materials {
+            let mut next = start.alternate();
+            for _ in 0..=self.materials.len() {
+                next = match next {
+                    Some(m) => self.material(m).and_then(Material::alternate),
+                    None => break,
+                };
+            }
+            if next.is_some() {
+                return Err("materials name each other as alternates in a loop".into());
+            }
+        }
         Ok(())
     }
 

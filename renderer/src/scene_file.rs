@@ -292,6 +292,31 @@ mod tests {
         }
     }
 
+    /// Found by the `rsc_payload` fuzzer: a mirror that names itself as its alternate
+    /// sent shading round in a loop until the stack overflowed. A compiled scene
+    /// cannot hold one; a damaged file that does is refused.
+    #[test]
+    fn alternates_in_a_loop_are_refused() {
+        use crate::materials::{Alternate, Material, MaterialId, mirror::Mirror};
+        let mut looped = scene();
+        let last = MaterialId(looped.materials.len() as u32);
+        looped.materials.push(Material::Mirror(Mirror {
+            color: Vec3::ONE,
+            alternate: Alternate::Material(last),
+        }));
+        assert!(looped.validate().is_err());
+        let e = decode(&encode(&looped).expect("encodes")).expect_err("a loop");
+        assert!(e.to_string().contains("alternates in a loop"), "{e}");
+        // A chain that ends is fine.
+        let mut chained = scene();
+        let first = MaterialId(0);
+        chained.materials.push(Material::Mirror(Mirror {
+            color: Vec3::ONE,
+            alternate: Alternate::Material(first),
+        }));
+        assert!(chained.validate().is_ok());
+    }
+
     #[test]
     fn every_truncation_is_an_error() {
         let bytes = encode(&scene()).expect("encodes");

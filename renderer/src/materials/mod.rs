@@ -55,6 +55,25 @@ impl Material {
         }
     }
 
+    /// The material this one hands some rays to (a mirror's or an illum's string
+    /// argument): shading follows it without tracing a new ray.
+    pub fn alternate(&self) -> Option<MaterialId> {
+        match self {
+            Material::Mirror(mirror::Mirror {
+                alternate: Alternate::Material(m),
+                ..
+            })
+            | Material::Emitter(light::Emitter {
+                kind:
+                    light::EmitterKind::Illum {
+                        alternate: Alternate::Material(m),
+                    },
+                ..
+            }) => Some(*m),
+            _ => None,
+        }
+    }
+
     pub fn color(&self) -> Color {
         match self {
             Material::Normal(n) => n.color,
