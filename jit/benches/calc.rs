@@ -23,7 +23,7 @@ use std::path::PathBuf;
 
 #[path = "../tests/support/library.rs"]
 mod library;
-use library::library_programs;
+use library::{library_dir, library_programs};
 
 /// The machine is shared: wall-clock time mostly measures the other processes, so
 /// this bench measures the thread's own CPU time (`CLOCK_THREAD_CPUTIME_ID`; the
@@ -201,15 +201,6 @@ fn programs() -> Vec<Program> {
             rows: grid(64, |t| vec![t * 10.0, 5.0 - t * 3.0]),
         },
     ]
-}
-
-fn library_dir() -> Option<PathBuf> {
-    let lib = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.oracle/lib");
-    std::fs::read_dir(&lib)
-        .ok()?
-        .filter_map(Result::ok)
-        .map(|e| e.path().join("site-packages/pyradiance/lib"))
-        .find(|p| p.is_dir())
 }
 
 /// As `radc calc` builds it: `MF:4` for reinhart.cal comes first, like rcalc's `-e`.

@@ -9,11 +9,10 @@ use radc_jit::{Jit, JitProgram, RecordEngine};
 use radc_lang::FileId;
 use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::{Env, Module};
-use std::path::PathBuf;
 
 #[path = "support/library.rs"]
 mod library;
-use library::library_programs;
+use library::{library_dir, library_programs};
 
 fn module(sources: &[&str], env: &Env) -> Module {
     let mut m = Module::new(env);
@@ -118,15 +117,6 @@ fn bounded_program_agrees_with_the_interpreter() {
         };
         assert_eq!(bits(&a), bits(&b), "{line}");
     }
-}
-
-fn library_dir() -> Option<PathBuf> {
-    let lib = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.oracle/lib");
-    std::fs::read_dir(&lib)
-        .ok()?
-        .filter_map(Result::ok)
-        .map(|e| e.path().join("site-packages/pyradiance/lib"))
-        .find(|p| p.is_dir())
 }
 
 /// The program that took 1.8 s to compile: `radc calc -f xyz_rgb.cal -e
@@ -264,12 +254,7 @@ fn profile_loop() {
         let mut ev = radc_lang::cal::eval::Evaluator::new(&m);
         let mut sum = 0.0;
         for i in 0..200_000 {
-            let t = (i % 64) as f64 / 64.0;
-            let row = if which == "cielab" {
-                [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
-            } else {
-                [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
-            };
+            let row = profile_row(&which, i);
             ev.next_record();
             for body in &bodies {
                 sum += ev.eval_top(body, &mut Cols(&row)).unwrap_or(0.0);
@@ -284,12 +269,7 @@ fn profile_loop() {
     let mut out = Vec::new();
     let mut sum = 0.0;
     for i in 0..200_000 {
-        let t = (i % 64) as f64 / 64.0;
-        let row = if which == "cielab" {
-            [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
-        } else {
-            [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
-        };
+        let row = profile_row(&which, i);
         ctx.next_record();
         out.clear();
         c.eval_outputs(all, &mut ctx, &mut Cols(&row), &mut out)
@@ -297,4 +277,15 @@ fn profile_loop() {
         sum += out[0];
     }
     eprintln!("{sum}");
+}
+
+/// Record `i` of the profile loop's 64-row cycle: cielab.cal's XYZ, or sun.cal's
+/// month, day and hour.
+fn profile_row(which: &str, i: usize) -> [f64; 3] {
+    let t = (i % 64) as f64 / 64.0;
+    if which == "cielab" {
+        [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
+    } else {
+        [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
+    }
 }

@@ -5,6 +5,17 @@ use radc_lang::FileId;
 use radc_lang::cal::{Env, Module};
 use std::path::{Path, PathBuf};
 
+/// Radiance's `.cal` library in the oracle venv (`bash tests/oracle/install.sh`),
+/// if it is installed.
+pub fn library_dir() -> Option<PathBuf> {
+    let lib = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.oracle/lib");
+    std::fs::read_dir(&lib)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|e| e.path().join("site-packages/pyradiance/lib"))
+        .find(|p| p.is_dir())
+}
+
 /// One program per library file: `rayinit.cal` then the file, with every name the
 /// file defines as an entry point. Each is (file name, program, entry names); files
 /// that do not check are left out, and a missing `rayinit.cal` gives none.
