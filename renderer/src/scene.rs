@@ -62,6 +62,12 @@ pub struct Scene {
     /// so only whether it hits anything matters. Derived with `surfaces`.
     #[serde(skip)]
     pub opaque_to_shadows: bool,
+    /// Every surface shades shadow rays black as above, or emits without being an
+    /// `illum` (a light, glow or spotlight blocks shadow rays aimed at other sources):
+    /// a shadow ray toward a surface source brings its value exactly when that source
+    /// is the nearest surface, and nothing otherwise. Derived with `surfaces`.
+    #[serde(skip)]
+    pub opaque_to_object_shadows: bool,
 }
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
@@ -128,12 +134,16 @@ impl Scene {
     /// loaded).
     pub fn pack_surfaces(&mut self) {
         self.surfaces = Surfaces::pack(&self.objects, &self.bvh);
-        self.opaque_to_shadows = self.objects.iter().all(|o| {
-            matches!(
-                o.material.and_then(|m| self.material(m)),
-                Some(Material::Normal(n)) if n.transmission.is_none()
-            )
+        let opaque = |m: Option<&Material>| matches!(m, Some(Material::Normal(n)) if n.transmission.is_none());
+        let material = |o: &Object| o.material.and_then(|m| self.material(m));
+        let opaque_to_shadows = self.objects.iter().all(|o| opaque(material(o)));
+        let opaque_to_object_shadows = self.objects.iter().all(|o| {
+            let m = material(o);
+            opaque(m)
+                || matches!(m, Some(Material::Emitter(e)) if !matches!(e.kind, EmitterKind::Illum { .. }))
         });
+        self.opaque_to_shadows = opaque_to_shadows;
+        self.opaque_to_object_shadows = opaque_to_object_shadows;
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
@@ -722,10 +732,24 @@ pub(crate) mod tests {
         let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
         b.square("floor", grey, 0.0, true);
         b.square("panel", lamp, 2.0, false);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(!scene.opaque_to_shadows);
+        // A lamp blocks shadow rays aimed at other sources: still opaque to those.
+        assert!(scene.opaque_to_object_shadows);
+        let illum = b.add(
+            "illum",
+            "window_light",
+            None,
+            PrimKind::Illum {
+                color: [1.0; 3],
+                alternate: None,
+            },
+        );
+        b.square("window", illum, 1.0, false);
         assert!(
             !Scene::compile(&b.scene)
                 .expect("compiles")
-                .opaque_to_shadows
+                .opaque_to_object_shadows
         );
     }
 
