@@ -94,6 +94,14 @@ fn f32_up(x: f64) -> f32 {
     if f64::from(f) < x { f.next_up() } else { f }
 }
 
+/// `f` moved by at least one `f32` step (and at least one step of the smallest
+/// normal magnitude) up (`sign` 1) or down (-1): `|f| 2^-23` is at least one step of
+/// `f`, so the rounded sum lies at or beyond the neighbour. Infinities and NaN stay.
+#[inline(always)]
+fn widen(f: f32, sign: f32) -> f32 {
+    f + sign * (f.abs() * (1.0 / (1u32 << 23) as f32) + f32::MIN_POSITIVE)
+}
+
 /// What a ray needs for slab tests, computed once per ray: per axis which side of a
 /// box the ray meets first (`1`: the high side, for a negative direction, including
 /// -0), the inverse direction, and the origin rounded to `f32` in the direction that
@@ -112,14 +120,16 @@ struct Slabs {
 }
 
 impl Slabs {
+    #[inline(always)]
     fn new(ray: &Ray) -> Slabs {
         let inv = (Vec3::ONE / ray.dir).to_array();
         let near = inv.map(|v| usize::from(v.is_sign_negative()));
         let org = ray.org.to_array();
         // Entry distances shrink with an origin moved along the direction, exits grow
-        // with one moved against it.
-        let up = org.map(f32_up);
-        let down = org.map(f32_down);
+        // with one moved against it: here by at least one `f32` step whether or not
+        // the conversion was exact (no branches; a step more errs towards visiting).
+        let up = org.map(|v| widen(v as f32, 1.0));
+        let down = org.map(|v| widen(v as f32, -1.0));
         Slabs {
             org_near: std::array::from_fn(|a| if near[a] == 0 { up[a] } else { down[a] }),
             org_far: std::array::from_fn(|a| if near[a] == 0 { down[a] } else { up[a] }),
@@ -311,7 +321,8 @@ impl Bvh {
         let mut limit32 = f32_up(limit);
         // An entry computed beyond this cannot be exactly before `limit`.
         let mut cull = limit32 * EXIT_SLACK + EXIT_TINY;
-        let mut stack = [(Link::default(), 0f32); STACK];
+        // Only entries below `sp` are read, each written first: no need to zero it.
+        let mut stack = [std::mem::MaybeUninit::<(Link, f32)>::uninit(); STACK];
         let mut spill: Vec<(Link, f32)> = Vec::new();
         let mut sp = 0usize;
         let mut node = &self.root;
@@ -336,7 +347,7 @@ impl Bvh {
             // Farther children onto the stack, farthest first; the nearest next.
             for &e in order[1..n.max(1)].iter().rev() {
                 if sp < STACK {
-                    stack[sp] = e;
+                    stack[sp] = std::mem::MaybeUninit::new(e);
                 } else {
                     spill.push(e);
                 }
@@ -350,7 +361,9 @@ impl Bvh {
                     None => {
                         sp -= 1;
                         if sp < STACK {
-                            stack[sp]
+                            // SAFETY: `stack[sp]` was written when `sp` last counted up
+                            // past it (entries at or above STACK go to `spill`).
+                            unsafe { stack[sp].assume_init() }
                         } else {
                             match spill.pop() {
                                 Some(e) => e,
