@@ -328,32 +328,51 @@ impl Bvh {
         let mut node = &self.root;
         loop {
             let (t0, hits) = s.entries(node, limit32);
-            // The children entered, nearest first (insertion sort of at most four).
-            let mut order = [(Link::default(), 0f32); WIDTH];
-            let mut n = 0;
-            let mut bits = hits;
-            while bits != 0 {
-                let c = bits.trailing_zeros() as usize;
-                bits &= bits - 1;
-                let e = (node.child[c], t0[c]);
-                let mut j = n;
-                while j > 0 && order[j - 1].1 > e.1 {
-                    order[j] = order[j - 1];
-                    j -= 1;
-                }
-                order[j] = e;
-                n += 1;
-            }
-            // Farther children onto the stack, farthest first; the nearest next.
-            for &e in order[1..n.max(1)].iter().rev() {
+            let mut push = |e: (Link, f32)| {
                 if sp < STACK {
                     stack[sp] = std::mem::MaybeUninit::new(e);
                 } else {
                     spill.push(e);
                 }
                 sp += 1;
-            }
-            let mut next = (n > 0).then_some(order[0]);
+            };
+            let child = |c: u32| (node.child[c as usize], t0[c as usize]);
+            // The children entered: the nearest next, the others onto the stack,
+            // farthest first. One or two (the common cases) without sorting.
+            let mut next = match hits.count_ones() {
+                0 => None,
+                1 => Some(child(hits.trailing_zeros())),
+                2 => {
+                    let (a, b) = (
+                        child(hits.trailing_zeros()),
+                        child(31 - hits.leading_zeros()),
+                    );
+                    let (near, far) = if b.1 < a.1 { (b, a) } else { (a, b) };
+                    push(far);
+                    Some(near)
+                }
+                _ => {
+                    // Insertion sort of three or four.
+                    let mut order = [(Link::default(), 0f32); WIDTH];
+                    let mut n = 0;
+                    let mut bits = hits;
+                    while bits != 0 {
+                        let e = child(bits.trailing_zeros());
+                        bits &= bits - 1;
+                        let mut j = n;
+                        while j > 0 && order[j - 1].1 > e.1 {
+                            order[j] = order[j - 1];
+                            j -= 1;
+                        }
+                        order[j] = e;
+                        n += 1;
+                    }
+                    for &e in order[1..n].iter().rev() {
+                        push(e);
+                    }
+                    Some(order[0])
+                }
+            };
             node = loop {
                 let (link, entry) = match next.take() {
                     Some(e) => e,
