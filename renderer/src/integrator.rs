@@ -245,7 +245,7 @@ impl RayState {
 
     pub fn hit_is_flat(&self, scene: &Scene) -> bool {
         match self.hit {
-            Target::Object(o) => scene.object(o.0).is_some_and(|o| o.shape.is_flat()),
+            Target::Object(o) => scene.hit_info(o.0).is_some_and(|o| o.flat),
             _ => false,
         }
     }
@@ -401,14 +401,14 @@ impl<'a> Tracer<'a> {
     /// Shades a surface hit (`raycont`): surfaces whose modifier the ray's antimatter set
     /// holds are passed through.
     fn shade_object(&self, r: &mut RayState, object: u32) {
-        let Some(o) = self.scene.object(object) else {
+        let Some(o) = self.scene.hit_info(object) else {
             return;
         };
         if r.clipset.contains(&o.modifier) {
             r.other_length = r.length;
             return self.transmit(r);
         }
-        self.shade(r, o.material);
+        self.shade(r, o.material());
     }
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
@@ -532,7 +532,7 @@ impl<'a> Tracer<'a> {
         let mut passages = r.passages.clone();
         if !reflects
             && let Target::Object(o) = r.hit
-            && let Some(obj) = self.scene.object(o.0)
+            && let Some(obj) = self.scene.hit_info(o.0)
         {
             passages.push((obj.modifier, r.rod > 0.0));
         }
@@ -634,13 +634,15 @@ impl<'a> Tracer<'a> {
         if new.t < old.t - FTINY {
             return false;
         }
-        let (Some(on), Some(oo)) = (self.scene.object(new.object), self.scene.object(old.object))
-        else {
+        let (Some(on), Some(oo)) = (
+            self.scene.hit_info(new.object),
+            self.scene.hit_info(old.object),
+        ) else {
             return true;
         };
         let (mn, mo) = (
-            on.material.and_then(|m| self.scene.material(m)),
-            oo.material.and_then(|m| self.scene.material(m)),
+            on.material().and_then(|m| self.scene.material(m)),
+            oo.material().and_then(|m| self.scene.material(m)),
         );
         match (mn, mo) {
             (None, Some(_)) => return true,
