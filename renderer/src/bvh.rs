@@ -11,7 +11,42 @@ use crate::math::{Bounds, Vec3};
 use crate::ray::Ray;
 
 const BINS: usize = 16;
-const LEAF_SIZE: usize = 4;
+
+/// How leaves are made. A small scene's tree stays in cache whatever its size, and
+/// leaves of one primitive save tests; a large scene's extra nodes cost more memory
+/// traffic than the tests they save (measured on `bench/trace_rays.py`'s scenes, see
+/// BENCHMARKS.md: the 318-surface room and 20,000 spheres gain 7% and 10% fewer
+/// instructions, the 320,000-triangle terrain is slower with them).
+#[derive(Clone, Copy)]
+struct LeafRule {
+    /// At most this many primitives always make a leaf.
+    size: usize,
+    /// SAH: the cost of a split's node, in primitive tests per unit of its area.
+    node_cost: f64,
+    /// A leaf SAH prefers to splitting holds at most this many.
+    max: usize,
+}
+
+impl LeafRule {
+    /// Up to this many primitives a scene is small.
+    const SMALL: usize = 1 << 16;
+
+    fn for_scene(primitives: usize) -> LeafRule {
+        if primitives <= LeafRule::SMALL {
+            LeafRule {
+                size: 1,
+                node_cost: 0.5,
+                max: 8,
+            }
+        } else {
+            LeafRule {
+                size: 4,
+                node_cost: 0.0,
+                max: 16,
+            }
+        }
+    }
+}
 /// Children per node.
 const WIDTH: usize = 4;
 /// Below this many primitives a subtree is built on the current thread.
@@ -223,7 +258,8 @@ impl Bvh {
         if items.is_empty() {
             return Bvh::default();
         }
-        let tree = build(items, 0);
+        let rule = LeafRule::for_scene(items.len());
+        let tree = build(items, 0, rule);
         let mut bvh = Bvh::default();
         let link = bvh.flatten(&tree);
         bvh.root.set(0, tree.bounds(), link);
@@ -457,9 +493,9 @@ fn bounds_of(items: &[Item]) -> (Bounds, Bounds) {
         })
 }
 
-fn build(mut items: Vec<Item>, depth: u32) -> Build {
+fn build(mut items: Vec<Item>, depth: u32, rule: LeafRule) -> Build {
     let (bounds, cbounds) = bounds_of(&items);
-    if items.len() <= LEAF_SIZE {
+    if items.len() <= rule.size {
         return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
     }
     let extent = cbounds.max - cbounds.min;
@@ -471,13 +507,13 @@ fn build(mut items: Vec<Item>, depth: u32) -> Build {
         2
     };
     if extent[axis] <= 0.0 || !extent[axis].is_finite() || depth >= SAH_DEPTH {
-        return split_middle(items, bounds, axis, depth);
+        return split_middle(items, bounds, axis, depth, rule);
     }
-    let Some(split) = sah_split(&items, &cbounds, axis, bounds) else {
-        if items.len() <= 4 * LEAF_SIZE {
+    let Some(split) = sah_split(&items, &cbounds, axis, bounds, rule) else {
+        if items.len() <= rule.max {
             return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
         }
-        return split_middle(items, bounds, axis, depth);
+        return split_middle(items, bounds, axis, depth, rule);
     };
     let (lo, span) = (cbounds.min[axis], extent[axis]);
     let bin = |c: Vec3| (((c[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
@@ -489,28 +525,49 @@ fn build(mut items: Vec<Item>, depth: u32) -> Build {
     items.retain(|i| bin(i.centroid) <= split);
     if items.is_empty() || right.is_empty() {
         items.extend(right);
-        return split_middle(items, bounds, axis, depth);
+        return split_middle(items, bounds, axis, depth, rule);
     }
-    children(items, right, bounds, depth)
+    children(items, right, bounds, depth, rule)
 }
 
-fn children(left: Vec<Item>, right: Vec<Item>, bounds: Bounds, depth: u32) -> Build {
+fn children(
+    left: Vec<Item>,
+    right: Vec<Item>,
+    bounds: Bounds,
+    depth: u32,
+    rule: LeafRule,
+) -> Build {
     let (l, r) = if left.len() + right.len() > PARALLEL_THRESHOLD {
-        rayon::join(|| build(left, depth + 1), || build(right, depth + 1))
+        rayon::join(
+            || build(left, depth + 1, rule),
+            || build(right, depth + 1, rule),
+        )
     } else {
-        (build(left, depth + 1), build(right, depth + 1))
+        (build(left, depth + 1, rule), build(right, depth + 1, rule))
     };
     Build::Interior(bounds, Box::new(l), Box::new(r))
 }
 
-fn split_middle(mut items: Vec<Item>, bounds: Bounds, axis: usize, depth: u32) -> Build {
+fn split_middle(
+    mut items: Vec<Item>,
+    bounds: Bounds,
+    axis: usize,
+    depth: u32,
+    rule: LeafRule,
+) -> Build {
     items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
     let right = items.split_off(items.len() / 2);
-    children(items, right, bounds, depth)
+    children(items, right, bounds, depth, rule)
 }
 
 /// The bin boundary minimizing the surface area heuristic, if splitting beats a leaf.
-fn sah_split(items: &[Item], cb: &Bounds, axis: usize, bounds: Bounds) -> Option<usize> {
+fn sah_split(
+    items: &[Item],
+    cb: &Bounds,
+    axis: usize,
+    bounds: Bounds,
+    rule: LeafRule,
+) -> Option<usize> {
     let (lo, span) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
     let mut bins = [(Bounds::EMPTY, 0usize); BINS];
     for it in items {
@@ -541,7 +598,8 @@ fn sah_split(items: &[Item], cb: &Bounds, axis: usize, bounds: Bounds) -> Option
         }
     }
     let leaf_cost = bounds.surface_area() * items.len() as f64;
-    (best.0.is_finite() && (best.0 < leaf_cost || items.len() > LEAF_SIZE * 4)).then_some(best.1)
+    let split_cost = best.0 + rule.node_cost * bounds.surface_area();
+    (best.0.is_finite() && (split_cost < leaf_cost || items.len() > rule.max)).then_some(best.1)
 }
 
 #[cfg(test)]
