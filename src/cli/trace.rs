@@ -376,8 +376,9 @@ fn run_parsed(args: &[String]) -> ExitCode {
         // buffer, written in input order. Each ray's random choices derive from its
         // index in the input, so the output is the same for any thread count.
         let used = rays.len().div_ceil(CHUNK);
-        if chunks.len() < used {
-            chunks.resize_with(used, Chunk::default);
+        // At least one: the flush record is formatted in the first.
+        if chunks.len() < used.max(1) {
+            chunks.resize_with(used.max(1), Chunk::default);
         }
         rays.par_chunks(CHUNK)
             .zip(chunks.par_iter_mut())
@@ -402,8 +403,9 @@ fn run_parsed(args: &[String]) -> ExitCode {
             // A zero direction: an empty record, then flush (rtrace's `bogusray`).
             let mut bogus = RayState::primary(last.0, last.1);
             bogus.normal = -last.1;
-            let mut text = OutBuf::default();
-            write_ray(&mut text, &bogus, &scene, &a);
+            let text = &mut chunks[0].text;
+            text.clear();
+            write_ray(text, &bogus, &scene, &a);
             let _ = out.write_all(text.bytes());
             let _ = out.flush();
         }
@@ -657,6 +659,7 @@ impl<R: BufRead> RayReader<R> {
     }
 
     /// Reads lines until one has a word; `None` at the end of the input (sets `eof`).
+    #[inline(always)]
     fn next_line(&mut self) -> Option<()> {
         while self.at == self.words.len() {
             if self.stop {
@@ -709,8 +712,10 @@ impl<R: BufRead> RayReader<R> {
         false
     }
 
-    /// The next line, copied and split into words, as radiance reads it; `None` at the
+    /// The next line, copied and split into words, as rtrace reads it; `None` at the
     /// end of the input or at a line that is not UTF-8.
+    #[cold]
+    #[inline(never)]
     fn read_line(&mut self) -> Option<()> {
         self.line.clear();
         if self.input.read_until(b'\n', &mut self.line).ok()? == 0 {
