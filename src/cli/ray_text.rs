@@ -244,17 +244,19 @@ fn fast_exp(x: f64, buf: &mut [u8; 16]) -> Option<usize> {
     // calls: without SSE4.1, floor and round are function calls).
     let binary = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
     let mut e = (binary * 78_913) >> 18;
+    // The truncation (saturating) is at least 1e7 exactly when s is, and so on.
     let mut s = scaled(a, 6 - e)?;
-    if s >= 1e7 {
+    let mut whole = s as u32;
+    if whole >= 10_000_000 {
         e += 1;
         s = scaled(a, 6 - e)?;
+        whole = s as u32;
     }
     // Outside only when a rounded product crossed a power of ten.
-    if !(1e6..1e7).contains(&s) {
+    if !(1_000_000..10_000_000).contains(&whole) {
         return None;
     }
     // 1e6 <= s < 1e7: the truncation is exact.
-    let whole = s as u32;
     let fraction = s - f64::from(whole);
     if (fraction - 0.5).abs() < 1e-6 {
         return None;
