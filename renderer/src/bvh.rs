@@ -389,7 +389,7 @@ impl Bvh {
             // misses overlap instead of coming one after another as they are visited.
             let mut bits = hits;
             while bits != 0 {
-                let l = node.child[bits.trailing_zeros() as usize];
+                let l = node.child[(bits.trailing_zeros() & 3) as usize];
                 bits &= bits - 1;
                 if l.count == 0
                     && let Some(n) = self.nodes.get(l.first as usize)
@@ -405,7 +405,8 @@ impl Bvh {
                 }
                 sp += 1;
             };
-            let child = |c: u32| (node.child[c as usize], t0[c as usize]);
+            // Lanes are 0..4 (`& 3` spares the bounds checks).
+            let child = |c: u32| (node.child[(c & 3) as usize], t0[(c & 3) as usize]);
             // The children entered: the nearest next, the others onto the stack,
             // farthest first. One or two (the common cases) without sorting.
             let mut next = match hits.count_ones() {
