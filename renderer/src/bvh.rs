@@ -386,7 +386,13 @@ impl Bvh {
         let mut stack = [std::mem::MaybeUninit::<(Link, f32)>::uninit(); STACK];
         let mut spill: Vec<(Link, f32)> = Vec::new();
         let mut sp = 0usize;
-        let mut node = &self.root;
+        // The root's children's boxes lie inside its own: a tree that starts with a
+        // node starts there, without testing the box around everything.
+        let top = self.root.child[0];
+        let mut node = match self.nodes.get(top.first as usize) {
+            Some(n) if top.count == 0 => n,
+            _ => &self.root,
+        };
         loop {
             let (t0, hits) = s.entries(node, limit32);
             // Start fetching every interior child entered at once, so that their
