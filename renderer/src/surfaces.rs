@@ -11,7 +11,7 @@
 use crate::bvh::Bvh;
 use crate::ray::{Ray, ShapeHit};
 use crate::scene::Object;
-use crate::shapes::{Polygon, Quad, Shape, Sphere, Triangle};
+use crate::shapes::{PackedSphere, Polygon, Quad, Shape, Triangle};
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Surfaces {
@@ -20,7 +20,7 @@ pub struct Surfaces {
     slots: Vec<(u32, u32)>,
     triangles: Vec<Triangle>,
     quads: Vec<Quad>,
-    spheres: Vec<Sphere>,
+    spheres: Vec<PackedSphere>,
 }
 
 const KIND_SHIFT: u32 = 30;
@@ -39,7 +39,7 @@ impl Surfaces {
             let (kind, index) = match shape {
                 Some(Shape::Polygon(p)) => s.pack_polygon(p),
                 Some(Shape::Sphere(sp)) if s.spheres.len() < INDEX as usize => {
-                    s.spheres.push(sp.clone());
+                    s.spheres.push(PackedSphere::of(sp));
                     (SPHERE, s.spheres.len() - 1)
                 }
                 _ => (OBJECT, 0),

@@ -11,7 +11,7 @@ pub use cone::Cone;
 pub use packed::{PackedPolygon, Quad, Triangle};
 pub use polygon::Polygon;
 pub use ring::Ring;
-pub use sphere::Sphere;
+pub use sphere::{PackedSphere, Sphere};
 
 use crate::math::{Bounds, FTINY};
 use crate::ray::{Ray, ShapeHit};
