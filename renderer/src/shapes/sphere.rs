@@ -66,7 +66,8 @@ impl PackedSphere {
         let tca = -oc.dot(ray.dir) / a;
         let perp = oc + ray.dir * tca;
         let disc = a * (self.scale * self.scale - perp.length_squared());
-        // A double root within FTINY^2 of a zero discriminant, as `quadratic`.
+        // A double root within FTINY^2 of a zero discriminant, as `quadratic`; the first
+        // root beyond FTINY.
         let t = if disc < -FTINY * FTINY || disc.is_nan() {
             return None;
         } else if disc <= FTINY * FTINY {
@@ -76,7 +77,11 @@ impl PackedSphere {
             let near = tca - h;
             if near > FTINY { near } else { tca + h }
         };
-        if !(t > FTINY) || t > tmax {
+        if t > FTINY {
+            if t > tmax {
+                return None;
+            }
+        } else {
             return None;
         }
         let normal = (ray.at(t) - self.center) / self.scale;
