@@ -54,7 +54,7 @@ impl PackedSphere {
 
     /// [`Sphere::intersect_within`]: the roots of `a t^2 + b t + c` found from the
     /// closest approach, the nearer one if beyond `FTINY`, else the farther.
-    #[inline]
+    #[inline(always)]
     pub fn intersect_within(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
         // Closest approach first: |oc|^2 - r^2 cancels badly far from the sphere, the
         // squared distance of the closest point to the centre does not.
