@@ -5,6 +5,16 @@
 //! the same numbers, so each hit or miss is the polygon's bit for bit, whatever the
 //! shape (convex, concave, a bow-tie): shared edges and vertices behave exactly as
 //! there.
+//!
+//! One shortcut, for quads whose projection is a rectangle with sides along the
+//! projection's axes (genbox's boxes, most rooms): a point strictly inside it is inside
+//! by the crossing test too, whatever the tolerances, so the edge loop is skipped. In
+//! such a rectangle each edge keeps one coordinate: a horizontal edge (its `y` the
+//! same at both ends, its ends on both sides of the point in `x`) finds the point on
+//! it or counts nothing, as its ends are on the same side in `y`; both vertical edges
+//! span the point's `y`, the one right of it counts a crossing and the one left of it
+//! finds the point on it or counts nothing. So the test answers "inside": on an edge,
+//! or one crossing.
 
 use super::polygon::{Polygon, crossing, projection};
 use crate::math::{Bounds, FTINY, Vec3};
@@ -22,6 +32,9 @@ pub struct PackedPolygon<const N: usize> {
     y: [f64; N],
     z: [f64; N],
     axis: u8,
+    /// The projection is a rectangle along its axes, vertices 0 and 2 at opposite
+    /// corners (see the module's documentation).
+    rectangle: bool,
 }
 
 pub type Triangle = PackedPolygon<3>;
@@ -35,13 +48,15 @@ impl<const N: usize> PackedPolygon<N> {
         // The polygon's axis, or for a corrupt one (a loaded file's) the axis its own
         // projection drops.
         let axis = 3 - xi - yi;
+        let (x, y) = (v.map(|v| v[xi]), v.map(|v| v[yi]));
         Some(PackedPolygon {
             normal: p.normal,
             offset: p.offset,
-            x: v.map(|v| v[xi]),
-            y: v.map(|v| v[yi]),
+            x,
+            y,
             z: v.map(|v| v[axis]),
             axis: axis as u8,
+            rectangle: is_rectangle(&x, &y),
         })
     }
 
@@ -60,7 +75,9 @@ impl<const N: usize> PackedPolygon<N> {
         let axis = usize::from(self.axis);
         let (xi, yi) = projection(axis);
         let q = Vec3::new(p[xi], p[yi], p[axis]);
-        (self.contains(q.x, q.y) && self.extent().contains(q)).then_some(ShapeHit {
+        let inside = (N == 4 && self.rectangle && self.strictly_inside_rectangle(q.x, q.y))
+            || self.contains(q.x, q.y);
+        (inside && self.extent().contains(q)).then_some(ShapeHit {
             t,
             normal: self.normal,
             rod,
@@ -83,6 +100,14 @@ impl<const N: usize> PackedPolygon<N> {
         odd
     }
 
+    /// Strictly inside the rectangle between vertices 0 and 2.
+    #[inline]
+    fn strictly_inside_rectangle(&self, x: f64, y: f64) -> bool {
+        let (x0, x1) = (self.x[0].min(self.x[2]), self.x[0].max(self.x[2]));
+        let (y0, y1) = (self.y[0].min(self.y[2]), self.y[0].max(self.y[2]));
+        x0 < x && x < x1 && y0 < y && y < y1
+    }
+
     /// The polygon's padded box, its axes in the projection's order (padding depends
     /// on the largest coordinate only, so the order does not change it).
     fn extent(&self) -> Bounds {
@@ -91,6 +116,20 @@ impl<const N: usize> PackedPolygon<N> {
             .fold(Bounds::EMPTY, |b, v| b.union(Bounds::point(v)))
             .padded()
     }
+}
+
+/// Four finite vertices making a rectangle along the axes: every edge changes exactly
+/// one coordinate, and vertices 0 and 2, and 1 and 3, differ in both (opposite corners,
+/// so the four corners are distinct and visited in order around it).
+fn is_rectangle<const N: usize>(x: &[f64; N], y: &[f64; N]) -> bool {
+    if N != 4 || !x.iter().chain(y).all(|c| c.is_finite()) {
+        return false;
+    }
+    let edges_along_axes = (0..4).all(|b| {
+        let a = (b + 3) % 4;
+        (x[a] == x[b]) != (y[a] == y[b])
+    });
+    edges_along_axes && x[0] != x[2] && y[0] != y[2] && x[1] != x[3] && y[1] != y[3]
 }
 
 #[cfg(test)]
@@ -254,6 +293,78 @@ mod tests {
             checked > 1000 && hits > checked / 4,
             "{hits} hits of {checked}"
         );
+    }
+
+    /// The rectangle shortcut on axis-aligned rectangles near and far from the origin
+    /// (where the crossing test's tolerances exceed the rectangle), in both orientations
+    /// and every plane: rays at random points in and around them and at points within
+    /// the tolerances of their edges, from inside and outside.
+    #[test]
+    fn rectangles_near_and_far_decide_as_the_polygon() {
+        let (mut checked, mut hits) = (0, 0);
+        for k in 0..240u64 {
+            let r = |j: u64| uniform(k + 104729, j);
+            let far = [0.0, 3.0, 1e3, 2.5e5, -1e6][(k % 5) as usize];
+            let (w, h) = (0.01 + r(0) * 10.0, 0.01 + r(1) * 10.0);
+            let (x0, y0) = (far + (r(2) - 0.5) * 20.0, -far + (r(3) - 0.5) * 20.0);
+            let corners = if k % 2 == 0 {
+                [(x0, y0), (x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h)]
+            } else {
+                [(x0, y0 + h), (x0 + w, y0 + h), (x0 + w, y0), (x0, y0)]
+            };
+            let axis = (k / 2 % 3) as usize;
+            let depth = (r(4) - 0.5) * 10.0;
+            let at = |a: f64, b: f64, c: f64| {
+                let mut v = Vec3::ZERO;
+                v[(axis + 1) % 3] = a;
+                v[(axis + 2) % 3] = b;
+                v[axis] = c;
+                v
+            };
+            let v: Vec<Vec3> = corners.iter().map(|&(a, b)| at(a, b, depth)).collect();
+            let p = Polygon::new(v.clone()).expect("a rectangle");
+            assert!(Quad::of(&p).expect("four vertices").rectangle);
+            let tol = 1e-6 * (x0.abs() + y0.abs() + w + h);
+            let mut targets = targets(&v);
+            for j in 0..60u64 {
+                let (a, b) = (r(10 + 2 * j) * 1.4 - 0.2, r(11 + 2 * j) * 1.4 - 0.2);
+                targets.push(at(x0 + a * w, y0 + b * h, depth));
+                // Within the tolerances of an edge, on either side.
+                let d = (r(200 + j) - 0.5) * 4.0 * tol;
+                targets.push(at(x0 + d, y0 + b * h, depth));
+                targets.push(at(x0 + a * w, y0 + h + d, depth));
+            }
+            let mut rays = aimed_at(&targets, k);
+            for &target in &targets[..20] {
+                let org = target + at(r(500) - 0.5, r(501) - 0.5, 0.0) * 0.5;
+                rays.push(Ray::new(org, (target - org).normalize()));
+            }
+            checked += rays.len();
+            hits += compare::<4>(&p, &rays, &format!("rectangle {k} at {far}"));
+        }
+        assert!(
+            checked > 40000 && hits > checked / 4,
+            "{hits} hits of {checked}"
+        );
+    }
+
+    #[test]
+    fn rectangles_are_recognised() {
+        let quad = |c: [(f64, f64); 4]| is_rectangle(&c.map(|c| c.0), &c.map(|c| c.1));
+        assert!(quad([(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)]));
+        assert!(quad([(0.0, 0.0), (0.0, 1.0), (2.0, 1.0), (2.0, 0.0)]));
+        // A bow-tie on the same corners, a rotated square, a trapezoid, and a
+        // quad doubling back on one edge.
+        assert!(!quad([(0.0, 0.0), (2.0, 1.0), (2.0, 0.0), (0.0, 1.0)]));
+        assert!(!quad([(1.0, 0.0), (2.0, 1.0), (1.0, 2.0), (0.0, 1.0)]));
+        assert!(!quad([(0.0, 0.0), (3.0, 0.0), (2.0, 1.0), (0.0, 1.0)]));
+        assert!(!quad([(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (2.0, 0.0)]));
+        assert!(!quad([(0.0, 0.0), (f64::NAN, 0.0), (2.0, 1.0), (0.0, 1.0)]));
+        assert!(!is_rectangle(&[0.0, 1.0, 1.0], &[0.0, 0.0, 1.0]));
+        // What packing finds for a genbox face.
+        let face = [(0.0, 0.0), (12.0, 0.0), (12.0, 16.0), (0.0, 16.0)];
+        let p = Polygon::new(face.map(|(a, b)| Vec3::new(a, 3.0, b)).to_vec()).unwrap();
+        assert!(Quad::of(&p).unwrap().rectangle);
     }
 
     #[test]
