@@ -68,7 +68,9 @@ impl<const N: usize> PackedPolygon<N> {
             return None;
         }
         let t = (ray.org.dot(self.normal) - self.offset) / rod;
-        if t <= FTINY || !t.is_finite() || t > tmax {
+        // `t <= FTINY || !t.is_finite()` in two comparisons: beyond FTINY, t is no NaN.
+        let ahead = t > FTINY && t < f64::INFINITY;
+        if !ahead || t > tmax {
             return None;
         }
         let p = ray.at(t);
