@@ -11,7 +11,42 @@ use crate::math::{Bounds, Vec3};
 use crate::ray::Ray;
 
 const BINS: usize = 16;
-const LEAF_SIZE: usize = 4;
+
+/// How leaves are made. A small scene's tree stays in cache whatever its size, and
+/// leaves of one primitive save tests; a large scene's extra nodes cost more memory
+/// traffic than the tests they save (measured on `bench/trace_rays.py`'s scenes, see
+/// BENCHMARKS.md: the 318-surface room and 20,000 spheres gain 7% and 10% fewer
+/// instructions, the 320,000-triangle terrain is slower with them).
+#[derive(Clone, Copy)]
+struct LeafRule {
+    /// At most this many primitives always make a leaf.
+    size: usize,
+    /// SAH: the cost of a split's node, in primitive tests per unit of its area.
+    node_cost: f64,
+    /// A leaf SAH prefers to splitting holds at most this many.
+    max: usize,
+}
+
+impl LeafRule {
+    /// Up to this many primitives a scene is small.
+    const SMALL: usize = 1 << 16;
+
+    fn for_scene(primitives: usize) -> LeafRule {
+        if primitives <= LeafRule::SMALL {
+            LeafRule {
+                size: 1,
+                node_cost: 0.5,
+                max: 8,
+            }
+        } else {
+            LeafRule {
+                size: 4,
+                node_cost: 0.0,
+                max: 16,
+            }
+        }
+    }
+}
 /// Children per node.
 const WIDTH: usize = 4;
 /// Below this many primitives a subtree is built on the current thread.
@@ -52,22 +87,28 @@ struct Link {
 }
 
 /// An interior node: `planes[axis][side][child]` (side 0 the low corner, 1 the high
-/// one), the children, and how many of the four are used (the first `kids`; unused
-/// lanes hold an empty box).
+/// one) and the children: 128 bytes, two cache lines. Unused lanes hold an empty box
+/// and [`Link::NONE`].
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 #[repr(C, align(64))]
 struct Node {
     planes: [[[f32; WIDTH]; 2]; 3],
     child: [Link; WIDTH],
-    kids: u32,
+}
+
+impl Link {
+    /// An unused lane: an interior node no tree has, which traversal skips.
+    const NONE: Link = Link {
+        first: u32::MAX,
+        count: 0,
+    };
 }
 
 impl Default for Node {
     fn default() -> Node {
         Node {
             planes: [[[f32::INFINITY; WIDTH], [f32::NEG_INFINITY; WIDTH]]; 3],
-            child: [Link::default(); WIDTH],
-            kids: 0,
+            child: [Link::NONE; WIDTH],
         }
     }
 }
@@ -82,6 +123,24 @@ impl Node {
     }
 }
 
+/// Asks for both cache lines of `n` (a hint: no effect on results).
+#[inline(always)]
+fn prefetch(n: &Node) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let p = (n as *const Node).cast::<i8>();
+        // SAFETY: a prefetch never faults and reads nothing the program sees; the
+        // address is that of a live node (and of its second line, inside it).
+        unsafe {
+            _mm_prefetch::<_MM_HINT_T0>(p);
+            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = n;
+}
+
 /// `x` rounded down to an `f32` (never above `x`).
 fn f32_down(x: f64) -> f32 {
     let f = x as f32;
@@ -92,6 +151,14 @@ fn f32_down(x: f64) -> f32 {
 fn f32_up(x: f64) -> f32 {
     let f = x as f32;
     if f64::from(f) < x { f.next_up() } else { f }
+}
+
+/// `f` moved by at least one `f32` step (and at least one step of the smallest
+/// normal magnitude) up (`sign` 1) or down (-1): `|f| 2^-23` is at least one step of
+/// `f`, so the rounded sum lies at or beyond the neighbour. Infinities and NaN stay.
+#[inline(always)]
+fn widen(f: f32, sign: f32) -> f32 {
+    f + sign * (f.abs() * (1.0 / (1u32 << 23) as f32) + f32::MIN_POSITIVE)
 }
 
 /// What a ray needs for slab tests, computed once per ray: per axis which side of a
@@ -112,14 +179,16 @@ struct Slabs {
 }
 
 impl Slabs {
+    #[inline(always)]
     fn new(ray: &Ray) -> Slabs {
         let inv = (Vec3::ONE / ray.dir).to_array();
         let near = inv.map(|v| usize::from(v.is_sign_negative()));
         let org = ray.org.to_array();
         // Entry distances shrink with an origin moved along the direction, exits grow
-        // with one moved against it.
-        let up = org.map(f32_up);
-        let down = org.map(f32_down);
+        // with one moved against it: here by at least one `f32` step whether or not
+        // the conversion was exact (no branches; a step more errs towards visiting).
+        let up = org.map(|v| widen(v as f32, 1.0));
+        let down = org.map(|v| widen(v as f32, -1.0));
         Slabs {
             org_near: std::array::from_fn(|a| if near[a] == 0 { up[a] } else { down[a] }),
             org_far: std::array::from_fn(|a| if near[a] == 0 { down[a] } else { up[a] }),
@@ -150,7 +219,7 @@ impl Slabs {
         for c in 0..WIDTH {
             hits |= u32::from(t0[c] <= t1[c] * EXIT_SLACK + EXIT_TINY) << c;
         }
-        (t0, hits & ((1 << n.kids.min(WIDTH as u32)) - 1))
+        (t0, hits)
     }
 }
 
@@ -189,11 +258,11 @@ impl Bvh {
         if items.is_empty() {
             return Bvh::default();
         }
-        let tree = build(items, 0);
+        let rule = LeafRule::for_scene(items.len());
+        let tree = build(items, 0, rule);
         let mut bvh = Bvh::default();
         let link = bvh.flatten(&tree);
         bvh.root.set(0, tree.bounds(), link);
-        bvh.root.kids = 1;
         bvh
     }
 
@@ -222,18 +291,19 @@ impl Bvh {
     pub fn validate(&self, objects: usize) -> Result<(), String> {
         let (n, order) = (self.nodes.len(), self.order.len());
         let node_ok = |at: Option<usize>, node: &Node| {
-            node.kids as usize <= WIDTH
-                && node.child[..node.kids as usize].iter().all(|l| {
-                    if l.count > 0 {
-                        (l.first as usize)
-                            .checked_add(l.count as usize)
-                            .is_some_and(|end| end <= order)
-                    } else {
-                        (l.first as usize) < n && at.is_none_or(|at| (l.first as usize) > at)
-                    }
-                })
+            node.child.iter().all(|&l| {
+                if l == Link::NONE {
+                    true
+                } else if l.count > 0 {
+                    (l.first as usize)
+                        .checked_add(l.count as usize)
+                        .is_some_and(|end| end <= order)
+                } else {
+                    (l.first as usize) < n && at.is_none_or(|at| (l.first as usize) > at)
+                }
+            })
         };
-        if !node_ok(None, &self.root) || (order > 0 && self.root.kids != 1) {
+        if !node_ok(None, &self.root) || (order > 0 && self.root.child[0] == Link::NONE) {
             return Err("BVH root is out of range".into());
         }
         for (at, node) in self.nodes.iter().enumerate() {
@@ -281,10 +351,7 @@ impl Bvh {
         }
         let at = self.nodes.len();
         self.nodes.push(Node::default());
-        let mut node = Node {
-            kids: kids.len() as u32,
-            ..Node::default()
-        };
+        let mut node = Node::default();
         for (lane, k) in kids.iter().enumerate() {
             let link = self.flatten(k);
             node.set(lane, k.bounds(), link);
@@ -311,38 +378,70 @@ impl Bvh {
         let mut limit32 = f32_up(limit);
         // An entry computed beyond this cannot be exactly before `limit`.
         let mut cull = limit32 * EXIT_SLACK + EXIT_TINY;
-        let mut stack = [(Link::default(), 0f32); STACK];
+        // Only entries below `sp` are read, each written first: no need to zero it.
+        let mut stack = [std::mem::MaybeUninit::<(Link, f32)>::uninit(); STACK];
         let mut spill: Vec<(Link, f32)> = Vec::new();
         let mut sp = 0usize;
         let mut node = &self.root;
         loop {
             let (t0, hits) = s.entries(node, limit32);
-            // The children entered, nearest first (insertion sort of at most four).
-            let mut order = [(Link::default(), 0f32); WIDTH];
-            let mut n = 0;
+            // Start fetching every interior child entered at once, so that their
+            // misses overlap instead of coming one after another as they are visited.
             let mut bits = hits;
             while bits != 0 {
-                let c = bits.trailing_zeros() as usize;
+                let l = node.child[bits.trailing_zeros() as usize];
                 bits &= bits - 1;
-                let e = (node.child[c], t0[c]);
-                let mut j = n;
-                while j > 0 && order[j - 1].1 > e.1 {
-                    order[j] = order[j - 1];
-                    j -= 1;
+                if l.count == 0
+                    && let Some(n) = self.nodes.get(l.first as usize)
+                {
+                    prefetch(n);
                 }
-                order[j] = e;
-                n += 1;
             }
-            // Farther children onto the stack, farthest first; the nearest next.
-            for &e in order[1..n.max(1)].iter().rev() {
+            let mut push = |e: (Link, f32)| {
                 if sp < STACK {
-                    stack[sp] = e;
+                    stack[sp] = std::mem::MaybeUninit::new(e);
                 } else {
                     spill.push(e);
                 }
                 sp += 1;
-            }
-            let mut next = (n > 0).then_some(order[0]);
+            };
+            let child = |c: u32| (node.child[c as usize], t0[c as usize]);
+            // The children entered: the nearest next, the others onto the stack,
+            // farthest first. One or two (the common cases) without sorting.
+            let mut next = match hits.count_ones() {
+                0 => None,
+                1 => Some(child(hits.trailing_zeros())),
+                2 => {
+                    let (a, b) = (
+                        child(hits.trailing_zeros()),
+                        child(31 - hits.leading_zeros()),
+                    );
+                    let (near, far) = if b.1 < a.1 { (b, a) } else { (a, b) };
+                    push(far);
+                    Some(near)
+                }
+                _ => {
+                    // Insertion sort of three or four.
+                    let mut order = [(Link::default(), 0f32); WIDTH];
+                    let mut n = 0;
+                    let mut bits = hits;
+                    while bits != 0 {
+                        let e = child(bits.trailing_zeros());
+                        bits &= bits - 1;
+                        let mut j = n;
+                        while j > 0 && order[j - 1].1 > e.1 {
+                            order[j] = order[j - 1];
+                            j -= 1;
+                        }
+                        order[j] = e;
+                        n += 1;
+                    }
+                    for &e in order[1..n].iter().rev() {
+                        push(e);
+                    }
+                    Some(order[0])
+                }
+            };
             node = loop {
                 let (link, entry) = match next.take() {
                     Some(e) => e,
@@ -350,7 +449,9 @@ impl Bvh {
                     None => {
                         sp -= 1;
                         if sp < STACK {
-                            stack[sp]
+                            // SAFETY: `stack[sp]` was written when `sp` last counted up
+                            // past it (entries at or above STACK go to `spill`).
+                            unsafe { stack[sp].assume_init() }
                         } else {
                             match spill.pop() {
                                 Some(e) => e,
@@ -392,9 +493,9 @@ fn bounds_of(items: &[Item]) -> (Bounds, Bounds) {
         })
 }
 
-fn build(mut items: Vec<Item>, depth: u32) -> Build {
+fn build(mut items: Vec<Item>, depth: u32, rule: LeafRule) -> Build {
     let (bounds, cbounds) = bounds_of(&items);
-    if items.len() <= LEAF_SIZE {
+    if items.len() <= rule.size {
         return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
     }
     let extent = cbounds.max - cbounds.min;
@@ -406,13 +507,13 @@ fn build(mut items: Vec<Item>, depth: u32) -> Build {
         2
     };
     if extent[axis] <= 0.0 || !extent[axis].is_finite() || depth >= SAH_DEPTH {
-        return split_middle(items, bounds, axis, depth);
+        return split_middle(items, bounds, axis, depth, rule);
     }
-    let Some(split) = sah_split(&items, &cbounds, axis, bounds) else {
-        if items.len() <= 4 * LEAF_SIZE {
+    let Some(split) = sah_split(&items, &cbounds, axis, bounds, rule) else {
+        if items.len() <= rule.max {
             return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
         }
-        return split_middle(items, bounds, axis, depth);
+        return split_middle(items, bounds, axis, depth, rule);
     };
     let (lo, span) = (cbounds.min[axis], extent[axis]);
     let bin = |c: Vec3| (((c[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
@@ -424,28 +525,49 @@ fn build(mut items: Vec<Item>, depth: u32) -> Build {
     items.retain(|i| bin(i.centroid) <= split);
     if items.is_empty() || right.is_empty() {
         items.extend(right);
-        return split_middle(items, bounds, axis, depth);
+        return split_middle(items, bounds, axis, depth, rule);
     }
-    children(items, right, bounds, depth)
+    children(items, right, bounds, depth, rule)
 }
 
-fn children(left: Vec<Item>, right: Vec<Item>, bounds: Bounds, depth: u32) -> Build {
+fn children(
+    left: Vec<Item>,
+    right: Vec<Item>,
+    bounds: Bounds,
+    depth: u32,
+    rule: LeafRule,
+) -> Build {
     let (l, r) = if left.len() + right.len() > PARALLEL_THRESHOLD {
-        rayon::join(|| build(left, depth + 1), || build(right, depth + 1))
+        rayon::join(
+            || build(left, depth + 1, rule),
+            || build(right, depth + 1, rule),
+        )
     } else {
-        (build(left, depth + 1), build(right, depth + 1))
+        (build(left, depth + 1, rule), build(right, depth + 1, rule))
     };
     Build::Interior(bounds, Box::new(l), Box::new(r))
 }
 
-fn split_middle(mut items: Vec<Item>, bounds: Bounds, axis: usize, depth: u32) -> Build {
+fn split_middle(
+    mut items: Vec<Item>,
+    bounds: Bounds,
+    axis: usize,
+    depth: u32,
+    rule: LeafRule,
+) -> Build {
     items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
     let right = items.split_off(items.len() / 2);
-    children(items, right, bounds, depth)
+    children(items, right, bounds, depth, rule)
 }
 
 /// The bin boundary minimizing the surface area heuristic, if splitting beats a leaf.
-fn sah_split(items: &[Item], cb: &Bounds, axis: usize, bounds: Bounds) -> Option<usize> {
+fn sah_split(
+    items: &[Item],
+    cb: &Bounds,
+    axis: usize,
+    bounds: Bounds,
+    rule: LeafRule,
+) -> Option<usize> {
     let (lo, span) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
     let mut bins = [(Bounds::EMPTY, 0usize); BINS];
     for it in items {
@@ -476,7 +598,8 @@ fn sah_split(items: &[Item], cb: &Bounds, axis: usize, bounds: Bounds) -> Option
         }
     }
     let leaf_cost = bounds.surface_area() * items.len() as f64;
-    (best.0.is_finite() && (best.0 < leaf_cost || items.len() > LEAF_SIZE * 4)).then_some(best.1)
+    let split_cost = best.0 + rule.node_cost * bounds.surface_area();
+    (best.0.is_finite() && (split_cost < leaf_cost || items.len() > rule.max)).then_some(best.1)
 }
 
 #[cfg(test)]
@@ -664,6 +787,13 @@ mod tests {
         }
     }
 
+    /// A node is two cache lines: a visit to four children touches no third.
+    #[test]
+    fn nodes_are_two_cache_lines() {
+        assert_eq!(std::mem::size_of::<Node>(), 128);
+        assert_eq!(std::mem::align_of::<Node>(), 64);
+    }
+
     #[test]
     fn boxes_round_outward() {
         for x in [0.1, -0.1, 1e-30, 3.0, -7.3e12, 1e39, -1e39, 1e-46] {
@@ -682,7 +812,6 @@ mod tests {
         assert!(bvh.validate(40).is_ok());
         assert!(bvh.validate(39).is_err());
         bvh.nodes[1].child[0] = Link { first: 0, count: 0 };
-        bvh.nodes[1].kids = bvh.nodes[1].kids.max(1);
         assert!(bvh.validate(40).is_err());
     }
 }

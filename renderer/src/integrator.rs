@@ -245,7 +245,7 @@ impl RayState {
 
     pub fn hit_is_flat(&self, scene: &Scene) -> bool {
         match self.hit {
-            Target::Object(o) => scene.object(o.0).is_some_and(|o| o.shape.is_flat()),
+            Target::Object(o) => scene.hit_info(o.0).is_some_and(|o| o.flat),
             _ => false,
         }
     }
@@ -264,6 +264,10 @@ impl RayState {
 const ROULETTE: u64 = 0x5255_4c45;
 /// Salts of the jitter of each source's samples (plus the source index).
 const SOURCE_JITTER: u64 = 0x4a49_5454_0000;
+
+/// How many FTINY-wide ties (plus as many relative 1e-6 margins) a blocker must lie
+/// before a surface source for a shadow ray to settle on it without the nearest hit.
+const SETTLE: f64 = 16.0;
 
 /// Longest chain of rays radc follows. Radiance limits reflections (`-lr`) but not rays
 /// passing through surfaces; a scene of thousands of stacked `void` surfaces would
@@ -377,7 +381,7 @@ impl<'a> Tracer<'a> {
         } else {
             f64::INFINITY
         };
-        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit) {
+        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit, f64::NEG_INFINITY) {
             r.hit = Target::Object(ObjectId(c.object));
             r.length = c.t;
             r.point = r.org + r.dir * c.t;
@@ -397,14 +401,14 @@ impl<'a> Tracer<'a> {
     /// Shades a surface hit (`raycont`): surfaces whose modifier the ray's antimatter set
     /// holds are passed through.
     fn shade_object(&self, r: &mut RayState, object: u32) {
-        let Some(o) = self.scene.object(object) else {
+        let Some(o) = self.scene.hit_info(object) else {
             return;
         };
         if r.clipset.contains(&o.modifier) {
             r.other_length = r.length;
             return self.transmit(r);
         }
-        self.shade(r, o.material);
+        self.shade(r, o.material());
     }
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
@@ -528,7 +532,7 @@ impl<'a> Tracer<'a> {
         let mut passages = r.passages.clone();
         if !reflects
             && let Target::Object(o) = r.hit
-            && let Some(obj) = self.scene.object(o.0)
+            && let Some(obj) = self.scene.hit_info(o.0)
         {
             passages.push((obj.modifier, r.rod > 0.0));
         }
@@ -574,7 +578,11 @@ impl<'a> Tracer<'a> {
     /// The nearest surface along `ray`, with Radiance's tie rules for surfaces within
     /// `FTINY` of each other: a surface with a material beats one without, a front face
     /// beats a back face, then the later modifier wins.
-    fn nearest(&self, ray: &Ray, limit: f64) -> Option<Candidate> {
+    ///
+    /// With `settle` above 0 the search may end at the first accepted hit nearer than
+    /// it, which is then returned in place of the nearest: for callers to whom any
+    /// surface that near is as good as the nearest one.
+    fn nearest(&self, ray: &Ray, limit: f64, settle: f64) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
         let scene = self.scene;
         scene.bvh.traverse(ray, limit + FTINY, |slot| {
@@ -592,6 +600,9 @@ impl<'a> Tracer<'a> {
                 };
                 if !self.rejects(best.as_ref(), &cand) {
                     best = Some(cand);
+                    if cand.t < settle {
+                        return -1.0;
+                    }
                 }
             }
             best.map_or(limit + FTINY, |b| b.t + FTINY)
@@ -623,13 +634,15 @@ impl<'a> Tracer<'a> {
         if new.t < old.t - FTINY {
             return false;
         }
-        let (Some(on), Some(oo)) = (self.scene.object(new.object), self.scene.object(old.object))
-        else {
+        let (Some(on), Some(oo)) = (
+            self.scene.hit_info(new.object),
+            self.scene.hit_info(old.object),
+        ) else {
             return true;
         };
         let (mn, mo) = (
-            on.material.and_then(|m| self.scene.material(m)),
-            oo.material.and_then(|m| self.scene.material(m)),
+            on.material().and_then(|m| self.scene.material(m)),
+            oo.material().and_then(|m| self.scene.material(m)),
         );
         match (mn, mo) {
             (None, Some(_)) => return true,
@@ -766,7 +779,22 @@ impl<'a> Tracer<'a> {
             // distant source is no surface: the first hit found decides.
             return (!self.hits_anything(&ray)).then_some(value?);
         }
-        match self.nearest(&ray, f64::INFINITY) {
+        if self.scene.opaque_to_object_shadows
+            && let (SourceTarget::Object(target), Some(v)) = (source.target, value)
+        {
+            // Whatever else it hits shades it black (`Scene::opaque_to_object_shadows`):
+            // only whether the source is the nearest surface matters. That cannot be
+            // so beyond the source (`sr.length`, where `source_value` met it), nor
+            // with a surface clearly before it: one more than `SETTLE` nearer beats it
+            // (within FTINY surfaces tie, so only a chain of that many surfaces each
+            // within FTINY of the next could pass it on to the source).
+            let settle = sr.length - SETTLE * (FTINY + 1e-6 * sr.length);
+            return match self.nearest(&ray, sr.length, settle) {
+                Some(h) if h.object != target => None,
+                _ => Some(v),
+            };
+        }
+        match self.nearest(&ray, f64::INFINITY, f64::NEG_INFINITY) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {
@@ -822,6 +850,7 @@ impl<'a> Tracer<'a> {
 mod tests {
     use super::*;
     use crate::scene::tests::IrBuilder;
+    use radc_lang::scene::ir::PrimKind;
 
     fn hit_name(scene: &Scene, org: Vec3, dir: Vec3) -> String {
         let t = Tracer::new(scene, Options::default());
@@ -856,6 +885,70 @@ mod tests {
             hit_name(&scene, Vec3::new(0.2, 0.1, 1.0), -Vec3::Z),
             "front"
         );
+    }
+
+    /// Shadow rays toward surface sources in a scene opaque to them end at the first
+    /// clear blocker and never look beyond the source (`opaque_to_object_shadows`); the
+    /// pixels are those of the full nearest-surface search, bit for bit, also with
+    /// blockers coincident with a lamp, within `FTINY` of it, just before and just
+    /// behind it, and lamps blocking each other.
+    #[test]
+    fn shadow_rays_settle_as_the_full_search_decides() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        b.square("floor", grey, 0.0, true);
+        let sphere = |b: &mut IrBuilder, name: &str, m: u32, c: [f64; 3], r: f64| {
+            b.add(
+                "sphere",
+                name,
+                Some(m),
+                PrimKind::Sphere {
+                    center: c,
+                    radius: r,
+                },
+            );
+        };
+        sphere(&mut b, "lamp_a", lamp, [0.0, 0.0, 1.5], 0.1);
+        sphere(&mut b, "twin_of_a", grey, [0.0, 0.0, 1.5], 0.1);
+        sphere(&mut b, "lamp_b", lamp, [0.6, 0.0, 1.5], 0.1);
+        sphere(
+            &mut b,
+            "touching_b",
+            grey,
+            [0.6, 0.0, 1.4 - 0.05 - 3e-7],
+            0.05,
+        );
+        sphere(&mut b, "lamp_c", lamp, [-0.6, 0.3, 1.2], 0.1);
+        sphere(&mut b, "lamp_d", lamp, [-0.6, 0.3, 1.6], 0.1);
+        sphere(&mut b, "behind_d", grey, [-0.6, 0.3, 1.7 + 0.02], 0.02);
+        sphere(&mut b, "ball", grey, [0.3, -0.4, 0.5], 0.2);
+        b.square("shelf", grey, 1.4 - 5e-7, false);
+        let mut scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(scene.opaque_to_object_shadows);
+        let mut pixels = Vec::new();
+        for pass in 0..2 {
+            scene.opaque_to_object_shadows = pass == 0;
+            let t = Tracer::new(&scene, Options::default());
+            let mut colors = Vec::new();
+            for i in 0..40 {
+                for j in 0..40 {
+                    let aim = Vec3::new(i as f64 / 20.0 - 1.0, j as f64 / 20.0 - 1.0, 0.0);
+                    let org = Vec3::new(0.05, -0.02, 1.3);
+                    colors.push(t.radiance(org, (aim - org).normalize()).color);
+                }
+            }
+            pixels.push(colors);
+        }
+        let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
+        assert!(lit > 100, "the floor is lit ({lit} of 1600)");
+        for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
+            assert_eq!(
+                a.to_array().map(f64::to_bits),
+                b.to_array().map(f64::to_bits),
+                "ray {k}"
+            );
+        }
     }
 
     /// Hits closer than `FTINY` are ignored: a ray leaving a surface does not hit it

@@ -34,6 +34,31 @@ pub struct Object {
     pub material_name: String,
 }
 
+/// What tracing and shading read of a hit object, 16 bytes each apart from the
+/// [`Object`]s (240 bytes, mostly names): in a large scene a hit then touches one line
+/// of a compact list instead of a record far from any cache.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HitInfo {
+    pub modifier: i64,
+    /// The material's index, `u32::MAX` for none.
+    material: u32,
+    pub flat: bool,
+}
+
+impl HitInfo {
+    fn of(o: &Object) -> HitInfo {
+        HitInfo {
+            modifier: o.modifier,
+            material: o.material.map_or(u32::MAX, |m| m.0),
+            flat: o.shape.is_flat(),
+        }
+    }
+
+    pub fn material(&self) -> Option<MaterialId> {
+        (self.material != u32::MAX).then_some(MaterialId(self.material))
+    }
+}
+
 /// A distant `source`: seen by rays that hit nothing, within its cone.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct DistantObject {
@@ -56,12 +81,21 @@ pub struct Scene {
     /// ([`Scene::pack_surfaces`]).
     #[serde(skip)]
     pub surfaces: Surfaces,
+    /// Per object what a hit needs of it, derived with `surfaces`.
+    #[serde(skip)]
+    hits: Vec<HitInfo>,
     /// Every surface has a plastic or metal material with no transmission, which shades
     /// shadow rays black whatever else holds (and without antimatter no ray passes a
     /// surface): a shadow ray toward a distant source is blocked by anything it hits,
     /// so only whether it hits anything matters. Derived with `surfaces`.
     #[serde(skip)]
     pub opaque_to_shadows: bool,
+    /// Every surface shades shadow rays black as above, or emits without being an
+    /// `illum` (a light, glow or spotlight blocks shadow rays aimed at other sources):
+    /// a shadow ray toward a surface source brings its value exactly when that source
+    /// is the nearest surface, and nothing otherwise. Derived with `surfaces`.
+    #[serde(skip)]
+    pub opaque_to_object_shadows: bool,
 }
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
@@ -128,12 +162,17 @@ impl Scene {
     /// loaded).
     pub fn pack_surfaces(&mut self) {
         self.surfaces = Surfaces::pack(&self.objects, &self.bvh);
-        self.opaque_to_shadows = self.objects.iter().all(|o| {
-            matches!(
-                o.material.and_then(|m| self.material(m)),
-                Some(Material::Normal(n)) if n.transmission.is_none()
-            )
+        self.hits = self.objects.iter().map(HitInfo::of).collect();
+        let opaque = |m: Option<&Material>| matches!(m, Some(Material::Normal(n)) if n.transmission.is_none());
+        let material = |o: &Object| o.material.and_then(|m| self.material(m));
+        let opaque_to_shadows = self.objects.iter().all(|o| opaque(material(o)));
+        let opaque_to_object_shadows = self.objects.iter().all(|o| {
+            let m = material(o);
+            opaque(m)
+                || matches!(m, Some(Material::Emitter(e)) if !matches!(e.kind, EmitterKind::Illum { .. }))
         });
+        self.opaque_to_shadows = opaque_to_shadows;
+        self.opaque_to_object_shadows = opaque_to_object_shadows;
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
@@ -179,6 +218,12 @@ impl Scene {
 
     pub fn object(&self, i: u32) -> Option<&Object> {
         self.objects.get(i as usize)
+    }
+
+    /// What a hit on object `i` needs of it ([`Scene::pack_surfaces`] must have run).
+    #[inline]
+    pub fn hit_info(&self, i: u32) -> Option<HitInfo> {
+        self.hits.get(i as usize).copied()
     }
 }
 
@@ -722,10 +767,24 @@ pub(crate) mod tests {
         let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
         b.square("floor", grey, 0.0, true);
         b.square("panel", lamp, 2.0, false);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(!scene.opaque_to_shadows);
+        // A lamp blocks shadow rays aimed at other sources: still opaque to those.
+        assert!(scene.opaque_to_object_shadows);
+        let illum = b.add(
+            "illum",
+            "window_light",
+            None,
+            PrimKind::Illum {
+                color: [1.0; 3],
+                alternate: None,
+            },
+        );
+        b.square("window", illum, 1.0, false);
         assert!(
             !Scene::compile(&b.scene)
                 .expect("compiles")
-                .opaque_to_shadows
+                .opaque_to_object_shadows
         );
     }
 

@@ -27,7 +27,7 @@ use crate::scene::Scene;
 /// The first bytes of every compiled scene file.
 pub const MAGIC: &[u8; 8] = b"RADCSCN\x1a";
 /// The layout of the header and of the scene types. See the module's documentation.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 /// The radc version stamped into files this build writes.
 pub const RADC_VERSION: &str = env!("CARGO_PKG_VERSION");
 
@@ -277,6 +277,12 @@ mod tests {
         assert_eq!(loaded.objects.len(), original.objects.len());
         assert_eq!(loaded.materials, original.materials);
         assert_eq!(loaded.sources, original.sources);
+        // What is derived at load, not stored, is derived again.
+        assert_eq!(loaded.surfaces, original.surfaces);
+        for i in 0..original.objects.len() as u32 {
+            assert_eq!(loaded.hit_info(i), original.hit_info(i));
+            assert!(loaded.hit_info(i).is_some());
+        }
         let (a, b) = (
             Tracer::new(&original, Options::default()),
             Tracer::new(&loaded, Options::default()),

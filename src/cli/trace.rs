@@ -18,14 +18,17 @@ use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
-use super::ray_text::{c_exp_into, is_space, radiance_number};
+use super::ray_text::{c_exp_into, is_space, number_prefix, radiance_number, spaced_number};
 use super::report::{self, Sources};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
 [-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
 
-/// Rays evaluated together (in parallel) between writes.
+/// Rays read, then evaluated together (in parallel), between writes.
 const BATCH: usize = 4096;
+
+/// Rays one parallel task evaluates and formats.
+const CHUNK: usize = 128;
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Format {
@@ -354,7 +357,9 @@ fn run_parsed(args: &[String]) -> ExitCode {
     };
     let tracer = Tracer::new(&scene, a.options.clone());
     let stdin = std::io::stdin();
-    let mut input = RayReader::new(BufReader::new(stdin.lock()), a.input);
+    let mut input = RayReader::new(BufReader::with_capacity(1 << 16, stdin.lock()), a.input);
+    let mut rays = Vec::with_capacity(BATCH);
+    let mut chunks: Vec<Chunk> = Vec::new();
     let mut last = (Vec3::ZERO, Vec3::ZERO);
     let mut index = 0u64;
     loop {
@@ -362,27 +367,46 @@ fn run_parsed(args: &[String]) -> ExitCode {
         if want == 0 {
             break;
         }
-        let (batch, flush, mut done) = input.batch(want);
+        let (flush, mut done) = input.batch(want, &mut rays);
         if let Some(n) = remaining.as_mut() {
-            *n -= (batch.len() + usize::from(flush)) as u64;
+            *n -= (rays.len() + usize::from(flush)) as u64;
             done |= *n == 0;
         }
-        // Each ray's random choices derive from its index in the input.
-        let results: Vec<RayState> = batch
-            .par_iter()
+        // Chunks of rays evaluated and formatted in parallel, each into its own
+        // buffer, written in input order. Each ray's random choices derive from its
+        // index in the input, so the output is the same for any thread count.
+        let used = rays.len().div_ceil(CHUNK);
+        // At least one: the flush record is formatted in the first.
+        if chunks.len() < used.max(1) {
+            chunks.resize_with(used.max(1), Chunk::default);
+        }
+        rays.par_chunks(CHUNK)
+            .zip(chunks.par_iter_mut())
             .enumerate()
-            .map(|(k, &(org, dir))| evaluate(&tracer, org, dir, &a, index + k as u64))
-            .collect();
-        index += (batch.len() + usize::from(flush)) as u64;
-        for r in &results {
-            write_ray(&mut out, r, &scene, &a);
-            last = (r.org, r.dir);
+            .for_each(|(c, (rays, chunk))| {
+                chunk.text.clear();
+                let first = index + (c * CHUNK) as u64;
+                for (k, &(org, dir)) in rays.iter().enumerate() {
+                    let r = evaluate(&tracer, org, dir, &a, first + k as u64);
+                    write_ray(&mut chunk.text, &r, &scene, &a);
+                    chunk.last = (r.org, r.dir);
+                }
+            });
+        index += (rays.len() + usize::from(flush)) as u64;
+        for chunk in &chunks[..used] {
+            let _ = out.write_all(chunk.text.bytes());
+        }
+        if let Some(chunk) = chunks[..used].last() {
+            last = chunk.last;
         }
         if flush {
             // A zero direction: an empty record, then flush (rtrace's `bogusray`).
             let mut bogus = RayState::primary(last.0, last.1);
             bogus.normal = -last.1;
-            write_ray(&mut out, &bogus, &scene, &a);
+            let text = &mut chunks[0].text;
+            text.clear();
+            write_ray(text, &bogus, &scene, &a);
+            let _ = out.write_all(text.bytes());
             let _ = out.flush();
         }
         if done {
@@ -393,6 +417,65 @@ fn run_parsed(args: &[String]) -> ExitCode {
         return ExitCode::from(1);
     }
     ExitCode::SUCCESS
+}
+
+/// Rays evaluated and formatted by one task, and the last one's origin and direction.
+#[derive(Default)]
+struct Chunk {
+    text: OutBuf,
+    last: (Vec3, Vec3),
+}
+
+/// Output bytes: a zero-filled buffer and how much of it is used, so a record is
+/// formatted in place, with neither zeroing nor a copy per number.
+#[derive(Default)]
+struct OutBuf {
+    buf: Vec<u8>,
+    len: usize,
+}
+
+impl OutBuf {
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    fn bytes(&self) -> &[u8] {
+        &self.buf[..self.len]
+    }
+
+    /// Room for `n` more bytes (at least), from the end of what is used.
+    fn room(&mut self, n: usize) -> &mut [u8] {
+        if self.len + n > self.buf.len() {
+            let size = (self.len + n).max(2 * self.buf.len()).max(4096);
+            self.buf.resize(size, 0);
+        }
+        &mut self.buf[self.len..]
+    }
+
+    fn push(&mut self, bytes: &[u8]) {
+        let n = bytes.len();
+        self.room(n)[..n].copy_from_slice(bytes);
+        self.len += n;
+    }
+
+    fn push_byte(&mut self, b: u8) {
+        self.room(1)[0] = b;
+        self.len += 1;
+    }
+
+    /// Each of `v` in C's `%e` and a tab.
+    fn push_numbers(&mut self, v: &[f64]) {
+        let room = self.room(17 * v.len());
+        let mut at = 0;
+        for x in v {
+            if let Ok(text) = <&mut [u8; 16]>::try_from(&mut room[at..at + 16]) {
+                let n = c_exp_into(*x, text);
+                text[n] = b'\t';
+                at += n + 1;
+            }
+        }
+        self.len += at;
+    }
 }
 
 fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args, index: u64) -> RayState {
@@ -470,11 +553,15 @@ pub(super) fn load_scene(
 struct RayReader<R> {
     input: R,
     format: Format,
+    /// Lines are scanned in the input's buffer where they can be (`scan_line`); the
+    /// others are copied here and split (`read_line`).
+    fast: bool,
     line: Vec<u8>,
-    /// The numbers of the current line (a NaN marks a word that is not one) and the
-    /// next to return.
+    /// The numbers of the current line and the next to return; `stop`: after them
+    /// comes a word that is not a number, which ends the input.
     words: Vec<f64>,
     at: usize,
+    stop: bool,
     eof: bool,
 }
 
@@ -483,32 +570,49 @@ impl<R: BufRead> RayReader<R> {
         RayReader {
             input,
             format,
+            fast: true,
             line: Vec::new(),
             words: Vec::new(),
             at: 0,
+            stop: false,
             eof: false,
         }
     }
 
-    /// Up to `n` rays; stops early after a zero-direction ray (a flush request, not
-    /// returned) or at the end of input (or at a word that is not a number).
-    fn batch(&mut self, n: usize) -> (Vec<(Vec3, Vec3)>, bool, bool) {
-        let mut out = Vec::new();
+    /// Up to `n` rays into `out` (cleared first). Returns whether it stopped early
+    /// after a zero-direction ray (a flush request, not returned) and whether the
+    /// input ended (or came to a word that is not a number).
+    fn batch(&mut self, n: usize, out: &mut Vec<(Vec3, Vec3)>) -> (bool, bool) {
+        out.clear();
         while out.len() < n {
             let Some(v) = self.next_six() else {
-                return (out, false, true);
+                return (false, true);
             };
             let org = Vec3::new(v[0], v[1], v[2]);
             let dir = Vec3::new(v[3], v[4], v[5]);
             if dir == Vec3::ZERO {
-                return (out, true, false);
+                return (true, false);
             }
             out.push((org, dir));
         }
-        (out, false, false)
+        (false, false)
     }
 
     fn next_six(&mut self) -> Option<[f64; 6]> {
+        if self.format == Format::Ascii && !self.eof {
+            // Six numbers of the current line at once (the usual case: one ray a line).
+            if self.at == self.words.len() {
+                self.next_line()?;
+            }
+            if let Some(w) = self.words.get(self.at..self.at + 6)
+                && !(self.stop && self.at + 6 == self.words.len())
+            {
+                let mut v = [0.0; 6];
+                v.copy_from_slice(w);
+                self.at += 6;
+                return Some(v);
+            }
+        }
         let mut v = [0.0; 6];
         for x in &mut v {
             *x = self.next_number()?;
@@ -546,42 +650,111 @@ impl<R: BufRead> RayReader<R> {
     }
 
     fn next_word(&mut self) -> Option<f64> {
-        while self.at == self.words.len() {
-            self.line.clear();
-            self.words.clear();
-            self.at = 0;
-            if self.input.read_until(b'\n', &mut self.line).ok()? == 0 {
-                return None;
-            }
-            if self.line.is_ascii() {
-                for w in self.line.split(|&b| is_space(b)).filter(|w| !w.is_empty()) {
-                    // rtrace stops at the first word that is not a number.
-                    let Some(x) = radiance_number(w) else {
-                        self.words.push(f64::NAN);
-                        break;
-                    };
-                    self.words.push(x);
-                }
-            } else {
-                // Unicode spaces separate words too; a line that is not UTF-8 ends the
-                // input.
-                let line = std::str::from_utf8(&self.line).ok()?;
-                for w in line.split_whitespace() {
-                    let Some(x) = radiance_number(w.as_bytes()) else {
-                        self.words.push(f64::NAN);
-                        break;
-                    };
-                    self.words.push(x);
-                }
-            }
+        if self.at == self.words.len() {
+            self.next_line()?;
         }
         let x = self.words[self.at];
         self.at += 1;
-        (!x.is_nan()).then_some(x)
+        (!(self.stop && self.at == self.words.len())).then_some(x)
+    }
+
+    /// Reads lines until one has a word; `None` at the end of the input (sets `eof`).
+    #[inline(always)]
+    fn next_line(&mut self) -> Option<()> {
+        while self.at == self.words.len() {
+            if self.stop {
+                self.eof = true;
+                return None;
+            }
+            self.words.clear();
+            self.at = 0;
+            if !(self.fast && self.scan_line()) && self.read_line().is_none() {
+                self.eof = true;
+                return None;
+            }
+        }
+        Some(())
+    }
+
+    /// The next line's numbers, read in place in the input's buffer, when the whole
+    /// line is there and is nothing but ASCII spaces and numbers (so splitting it would
+    /// find the same words); false leaves the line to `read_line`.
+    fn scan_line(&mut self) -> bool {
+        let Ok(buf) = self.input.fill_buf() else {
+            return false;
+        };
+        let mut at = 0;
+        while let Some(&b) = buf.get(at) {
+            if b == b'\n' {
+                self.input.consume(at + 1);
+                return true;
+            }
+            if is_space(b) {
+                at += 1;
+                continue;
+            }
+            let word = &buf[at..];
+            let number = spaced_number(word).or_else(|| {
+                number_prefix(word).filter(|&(_, n)| word.get(n).is_some_and(|&b| is_space(b)))
+            });
+            let Some((x, n)) = number else {
+                break;
+            };
+            self.words.push(x);
+            // A space follows the number: the line's end, or skipped.
+            if word[n] == b'\n' {
+                self.input.consume(at + n + 1);
+                return true;
+            }
+            at += n + 1;
+        }
+        self.words.clear();
+        false
+    }
+
+    /// The next line, copied and split into words, as rtrace reads it; `None` at the
+    /// end of the input or at a line that is not UTF-8.
+    #[cold]
+    #[inline(never)]
+    fn read_line(&mut self) -> Option<()> {
+        self.line.clear();
+        if self.input.read_until(b'\n', &mut self.line).ok()? == 0 {
+            return None;
+        }
+        if self.line.is_ascii() {
+            for w in self.line.split(|&b| is_space(b)).filter(|w| !w.is_empty()) {
+                // rtrace stops at the first word that is not a number.
+                let Some(x) = radiance_number(w) else {
+                    self.words.push(f64::NAN);
+                    self.stop = true;
+                    break;
+                };
+                self.words.push(x);
+            }
+        } else {
+            // Unicode spaces separate words too; a line that is not UTF-8 ends the
+            // input.
+            let line = std::str::from_utf8(&self.line).ok()?;
+            for w in line.split_whitespace() {
+                let Some(x) = radiance_number(w.as_bytes()) else {
+                    self.words.push(f64::NAN);
+                    self.stop = true;
+                    break;
+                };
+                self.words.push(x);
+            }
+        }
+        Some(())
     }
 }
 
-fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
+fn write_ray(out: &mut OutBuf, r: &RayState, scene: &Scene, a: &Args) {
+    // The usual record (`-ov`, text) without the general loop.
+    if a.output == Format::Ascii && a.outputs == [Output::Value] {
+        out.push_numbers(&r.color.to_array());
+        out.push_byte(b'\n');
+        return;
+    }
     let no_hit = matches!(r.hit, Target::None);
     for o in &a.outputs {
         match o {
@@ -614,58 +787,50 @@ fn write_ray(out: &mut impl Write, r: &RayState, scene: &Scene, a: &Args) {
             Output::Unmirrored => put(out, a.output, &(r.color - r.mirror_color).to_array()),
             Output::UnmirroredLength => put(out, a.output, &[r.other_length]),
             Output::Surface | Output::Modifier | Output::Material => {
-                let name = names(r, scene, *o);
-                let _ = write!(out, "{name}\t");
+                out.push(names(r, scene, *o).as_bytes());
+                out.push(b"\t");
             }
-            Output::Tilde => {
-                let _ = write!(out, "~\t");
-            }
+            Output::Tilde => out.push(b"~\t"),
             Output::Weight => put(out, a.output, &[r.weight]),
             // Local (u, v) coordinates: zero for every surface but meshes in Radiance.
             Output::LocalCoordinates => put(out, a.output, &[0.0, 0.0]),
         }
     }
     if a.output == Format::Ascii {
-        let _ = writeln!(out);
+        out.push_byte(b'\n');
     }
 }
 
-fn names(r: &RayState, scene: &Scene, o: Output) -> String {
+fn names<'s>(r: &RayState, scene: &'s Scene, o: Output) -> &'s str {
     let (name, modifier, material) = match r.hit {
-        Target::None => return "*".into(),
+        Target::None => return "*",
         Target::Object(id) => match scene.object(id.0) {
             Some(x) => (&x.name, &x.modifier_name, &x.material_name),
-            None => return "*".into(),
+            None => return "*",
         },
         Target::Distant(i) => match scene.distant.get(i as usize) {
             Some(x) => (&x.name, &x.modifier_name, &x.material_name),
-            None => return "*".into(),
+            None => return "*",
         },
     };
     match o {
-        Output::Surface => name.clone(),
-        Output::Modifier => modifier.clone(),
-        _ => material.clone(),
+        Output::Surface => name,
+        Output::Modifier => modifier,
+        _ => material,
     }
 }
 
-fn put(out: &mut impl Write, f: Format, v: &[f64]) {
-    let _ = match f {
-        Format::Ascii => v.iter().try_for_each(|x| {
-            let mut buf = [0u8; 40];
-            let n = c_exp_into(*x, &mut buf);
-            buf[n] = b'\t';
-            out.write_all(&buf[..=n])
-        }),
-        Format::Float => v
-            .iter()
-            .try_for_each(|x| out.write_all(&(*x as f32).to_ne_bytes())),
-        Format::Double => v.iter().try_for_each(|x| out.write_all(&x.to_ne_bytes())),
-        Format::Color => match v {
-            [r, g, b] => out.write_all(&picture::rgbe(Vec3::new(*r, *g, *b))),
-            _ => Ok(()),
-        },
-    };
+fn put(out: &mut OutBuf, f: Format, v: &[f64]) {
+    match f {
+        Format::Ascii => out.push_numbers(v),
+        Format::Float => v.iter().for_each(|x| out.push(&(*x as f32).to_ne_bytes())),
+        Format::Double => v.iter().for_each(|x| out.push(&x.to_ne_bytes())),
+        Format::Color => {
+            if let [r, g, b] = v {
+                out.push(&picture::rgbe(Vec3::new(*r, *g, *b)));
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -677,5 +842,180 @@ mod tests {
         let a = parse_args(&["-h".into(), "-I+".into(), "x.rad".into()]).unwrap();
         assert!(!a.header && a.irradiance);
         assert!(parse_args(&["-ab".into(), "x".into(), "x.rad".into()]).is_err());
+    }
+
+    /// Every batch a reader returns, until the input ends: rays as bits, then the flush
+    /// and end flags.
+    fn read_all(
+        text: &[u8],
+        capacity: usize,
+        fast: bool,
+        n: usize,
+    ) -> Vec<(Vec<[u64; 6]>, bool, bool)> {
+        let mut reader = RayReader::new(BufReader::with_capacity(capacity, text), Format::Ascii);
+        reader.fast = fast;
+        let mut rays = Vec::new();
+        let mut batches = Vec::new();
+        loop {
+            let (flush, done) = reader.batch(n, &mut rays);
+            let bits = rays
+                .iter()
+                .map(|(o, d)| {
+                    let v = [o.x, o.y, o.z, d.x, d.y, d.z];
+                    v.map(f64::to_bits)
+                })
+                .collect();
+            batches.push((bits, flush, done));
+            if done || batches.len() > 100_000 {
+                return batches;
+            }
+        }
+    }
+
+    /// Reading lines in place in the input's buffer finds the same rays, flushes and
+    /// end as copying and splitting every line, on random text with the usual numbers,
+    /// odd ones, Unicode spaces, bytes that are not UTF-8, blank and long lines, words
+    /// that are not numbers, and lines cut by the buffer's end (small buffers).
+    #[test]
+    fn lines_read_in_place_as_when_copied() {
+        let tokens: [&[u8]; 24] = [
+            b"10.925434",
+            b"-0.46798942",
+            b"0",
+            b"-0",
+            b"1",
+            b"5.",
+            b".5",
+            b"-.25",
+            b"+2",
+            b"1e3",
+            b"-2.5E-2",
+            b"123456789012345678901234567890",
+            b"0.1234567890123",
+            b"12345678.5",
+            b"0.000000001",
+            b"1234567.12345678",
+            b"9007199254740993",
+            b"00000001.5",
+            b"7",
+            b"3.25",
+            b"-1",
+            b"0.5",
+            b"2",
+            b"-3",
+        ];
+        let spaces: [&[u8]; 9] = [
+            b" ",
+            b" ",
+            b" ",
+            b"\t",
+            b"  ",
+            b"\r",
+            b"\x0b",
+            b"\x0c",
+            "\u{a0}".as_bytes(),
+        ];
+        let odd: [&[u8]; 7] = [
+            b"abc",
+            b"1.5x",
+            b"\xff",
+            "\u{2003}".as_bytes(),
+            b"1e",
+            b"-",
+            "\u{e9}".as_bytes(),
+        ];
+        let mut seed = 0x5851_f42d_4c95_7f2du64;
+        let mut next = |m: u64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % m
+        };
+        let mut compared = 0;
+        for case in 0..300 {
+            let mut text = Vec::new();
+            for _ in 0..next(60) + 1 {
+                match next(20) {
+                    0 => {}
+                    1 => text.extend_from_slice(b"1 2 3 0 0 0"),
+                    2 => text.extend_from_slice(b"4 5 6 7 8"),
+                    _ => {
+                        for k in 0..6 {
+                            if k > 0 || next(4) == 0 {
+                                text.extend_from_slice(spaces[next(9) as usize]);
+                            }
+                            text.extend_from_slice(tokens[next(24) as usize]);
+                        }
+                    }
+                }
+                if next(8) == 0 {
+                    text.extend_from_slice(spaces[next(9) as usize]);
+                }
+                if case % 3 == 0 && next(40) == 0 {
+                    text.extend_from_slice(odd[next(7) as usize]);
+                }
+                text.push(b'\n');
+            }
+            if next(2) == 0 {
+                text.pop();
+            }
+            for n in [1, 3, 4096] {
+                let want = read_all(&text, 1 << 16, false, n);
+                for capacity in [1, 7, 16, 64, 1 << 16] {
+                    let got = read_all(&text, capacity, true, n);
+                    assert_eq!(
+                        got,
+                        want,
+                        "{:?} capacity {capacity} batch {n}",
+                        String::from_utf8_lossy(&text)
+                    );
+                    compared += 1;
+                }
+            }
+        }
+        assert_eq!(compared, 300 * 3 * 5);
+    }
+
+    /// The fast path is the one the usual input takes.
+    #[test]
+    fn usual_lines_are_scanned_in_place() {
+        let text =
+            b"10.925434 13.039251 1.057157 -0.46798942 0.81813978 -0.33411556\n1 2 3 0 0 1\n";
+        let mut reader = RayReader::new(BufReader::new(&text[..]), Format::Ascii);
+        assert!(reader.scan_line());
+        assert_eq!(reader.words.len(), 6);
+        assert_eq!(reader.words[3], -0.46798942);
+        reader.words.clear();
+        assert!(reader.scan_line());
+        assert_eq!(reader.words, [1.0, 2.0, 3.0, 0.0, 0.0, 1.0]);
+        reader.words.clear();
+        for text in [&b"1 2 abc\n"[..], b"1 2\xc2\xa0 3\n", b"1 2 3"] {
+            let mut reader = RayReader::new(BufReader::new(text), Format::Ascii);
+            assert!(!reader.scan_line(), "{text:?}");
+            assert!(reader.words.is_empty());
+        }
+    }
+
+    /// Records formatted in place: numbers, names and binary values, buffer growth.
+    #[test]
+    fn out_buf_grows_and_keeps_records() {
+        let mut out = OutBuf::default();
+        let mut want = Vec::new();
+        for k in 0..2000 {
+            let x = k as f64 * 0.37 - 100.0;
+            out.push_numbers(&[x, 0.0, 1e300]);
+            out.push(b"name\t");
+            out.push_byte(b'\n');
+            for v in [x, 0.0, 1e300] {
+                let mut b = [0u8; 16];
+                let n = c_exp_into(v, &mut b);
+                want.extend_from_slice(&b[..n]);
+                want.push(b'\t');
+            }
+            want.extend_from_slice(b"name\t\n");
+        }
+        assert_eq!(out.bytes(), &want[..]);
+        out.clear();
+        assert!(out.bytes().is_empty());
     }
 }
