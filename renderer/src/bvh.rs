@@ -25,6 +25,8 @@ struct LeafRule {
     node_cost: f64,
     /// A leaf SAH prefers to splitting holds at most this many.
     max: usize,
+    /// SAH looks at every axis, not only the one the centroids spread most along.
+    all_axes: bool,
 }
 
 impl LeafRule {
@@ -37,12 +39,14 @@ impl LeafRule {
                 size: 1,
                 node_cost: 0.5,
                 max: 8,
+                all_axes: true,
             }
         } else {
             LeafRule {
                 size: 4,
                 node_cost: 0.0,
                 max: 16,
+                all_axes: false,
             }
         }
     }
@@ -389,7 +393,7 @@ impl Bvh {
             // misses overlap instead of coming one after another as they are visited.
             let mut bits = hits;
             while bits != 0 {
-                let l = node.child[bits.trailing_zeros() as usize];
+                let l = node.child[(bits.trailing_zeros() & 3) as usize];
                 bits &= bits - 1;
                 if l.count == 0
                     && let Some(n) = self.nodes.get(l.first as usize)
@@ -405,7 +409,8 @@ impl Bvh {
                 }
                 sp += 1;
             };
-            let child = |c: u32| (node.child[c as usize], t0[c as usize]);
+            // Lanes are 0..4 (`& 3` spares the bounds checks).
+            let child = |c: u32| (node.child[(c & 3) as usize], t0[(c & 3) as usize]);
             // The children entered: the nearest next, the others onto the stack,
             // farthest first. One or two (the common cases) without sorting.
             let mut next = match hits.count_ones() {
@@ -509,7 +514,20 @@ fn build(mut items: Vec<Item>, depth: u32, rule: LeafRule) -> Build {
     if extent[axis] <= 0.0 || !extent[axis].is_finite() || depth >= SAH_DEPTH {
         return split_middle(items, bounds, axis, depth, rule);
     }
-    let Some(split) = sah_split(&items, &cbounds, axis, bounds, rule) else {
+    // A small scene's build can afford to try every axis; a large one's splits the
+    // widest.
+    let axes: &[usize] = if rule.all_axes {
+        &[0, 1, 2]
+    } else {
+        std::slice::from_ref(&axis)
+    };
+    let best = axes
+        .iter()
+        .copied()
+        .filter(|&a| extent[a] > 0.0 && extent[a].is_finite())
+        .filter_map(|a| sah_split(&items, &cbounds, a, bounds, rule).map(|(c, b)| (c, a, b)))
+        .min_by(|x, y| x.0.total_cmp(&y.0));
+    let Some((_, axis, split)) = best else {
         if items.len() <= rule.max {
             return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
         }
@@ -560,14 +578,15 @@ fn split_middle(
     children(items, right, bounds, depth, rule)
 }
 
-/// The bin boundary minimizing the surface area heuristic, if splitting beats a leaf.
+/// The bin boundary along `axis` minimizing the surface area heuristic and its cost,
+/// if splitting beats a leaf.
 fn sah_split(
     items: &[Item],
     cb: &Bounds,
     axis: usize,
     bounds: Bounds,
     rule: LeafRule,
-) -> Option<usize> {
+) -> Option<(f64, usize)> {
     let (lo, span) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
     let mut bins = [(Bounds::EMPTY, 0usize); BINS];
     for it in items {
@@ -599,7 +618,8 @@ fn sah_split(
     }
     let leaf_cost = bounds.surface_area() * items.len() as f64;
     let split_cost = best.0 + rule.node_cost * bounds.surface_area();
-    (best.0.is_finite() && (split_cost < leaf_cost || items.len() > rule.max)).then_some(best.1)
+    (best.0.is_finite() && (split_cost < leaf_cost || items.len() > rule.max))
+        .then_some((split_cost, best.1))
 }
 
 #[cfg(test)]
