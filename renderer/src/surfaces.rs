@@ -2,8 +2,8 @@
 //! object and where its geometry is, the geometry itself in compact per-kind lists in
 //! slot order (neighbouring slots are neighbours in memory). Names, materials and
 //! modifiers stay in [`crate::scene::Object`], which traversal never touches.
-//! Triangles and spheres are stored inline, other shapes are intersected through their
-//! object.
+//! Triangles, four-vertex polygons and spheres are stored inline, other shapes are
+//! intersected through their object.
 //!
 //! Derived from the objects and the BVH (never stored in a compiled scene file): built
 //! by [`crate::scene::Scene::compile`] and when a compiled scene is loaded.
@@ -11,7 +11,7 @@
 use crate::bvh::Bvh;
 use crate::ray::{Ray, ShapeHit};
 use crate::scene::Object;
-use crate::shapes::{Shape, Sphere, Triangle};
+use crate::shapes::{PackedSphere, Polygon, Quad, Shape, Triangle};
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Surfaces {
@@ -19,7 +19,8 @@ pub struct Surfaces {
     /// kind's list.
     slots: Vec<(u32, u32)>,
     triangles: Vec<Triangle>,
-    spheres: Vec<Sphere>,
+    quads: Vec<Quad>,
+    spheres: Vec<PackedSphere>,
 }
 
 const KIND_SHIFT: u32 = 30;
@@ -27,6 +28,7 @@ const INDEX: u32 = (1 << KIND_SHIFT) - 1;
 const TRIANGLE: u32 = 0;
 const SPHERE: u32 = 1;
 const OBJECT: u32 = 2;
+const QUAD: u32 = 3;
 
 impl Surfaces {
     /// The surface of every leaf slot of `bvh`, in slot order.
@@ -35,17 +37,9 @@ impl Surfaces {
         for &object in bvh.order() {
             let shape = objects.get(object as usize).map(|o| &o.shape);
             let (kind, index) = match shape {
-                Some(Shape::Polygon(p)) if s.triangles.len() < INDEX as usize => {
-                    match Triangle::of(p) {
-                        Some(t) => {
-                            s.triangles.push(t);
-                            (TRIANGLE, s.triangles.len() - 1)
-                        }
-                        None => (OBJECT, 0),
-                    }
-                }
+                Some(Shape::Polygon(p)) => s.pack_polygon(p),
                 Some(Shape::Sphere(sp)) if s.spheres.len() < INDEX as usize => {
-                    s.spheres.push(sp.clone());
+                    s.spheres.push(PackedSphere::of(sp));
                     (SPHERE, s.spheres.len() - 1)
                 }
                 _ => (OBJECT, 0),
@@ -55,9 +49,27 @@ impl Surfaces {
         s
     }
 
+    /// A polygon's kind and index: packed when it has three or four vertices (and its
+    /// list has room), otherwise intersected through its object.
+    fn pack_polygon(&mut self, p: &Polygon) -> (u32, usize) {
+        if let Some(t) = Triangle::of(p)
+            && self.triangles.len() < INDEX as usize
+        {
+            self.triangles.push(t);
+            return (TRIANGLE, self.triangles.len() - 1);
+        }
+        if let Some(q) = Quad::of(p)
+            && self.quads.len() < INDEX as usize
+        {
+            self.quads.push(q);
+            return (QUAD, self.quads.len() - 1);
+        }
+        (OBJECT, 0)
+    }
+
     /// The object in `slot` and its hit (as [`Shape::intersect`] finds it), or `None`
     /// when there is none or it lies beyond `tmax`.
-    #[inline]
+    #[inline(always)]
     pub fn intersect(
         &self,
         slot: u32,
@@ -70,6 +82,7 @@ impl Surfaces {
         let hit = match at >> KIND_SHIFT {
             TRIANGLE => self.triangles.get(index)?.intersect_within(ray, tmax),
             SPHERE => self.spheres.get(index)?.intersect_within(ray, tmax),
+            QUAD => self.quads.get(index)?.intersect_within(ray, tmax),
             _ => objects
                 .get(object as usize)?
                 .shape

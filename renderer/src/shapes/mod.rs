@@ -2,16 +2,16 @@
 //! parallel to a plane within `FTINY` miss) and its normals and sides.
 
 pub mod cone;
+pub mod packed;
 pub mod polygon;
 pub mod ring;
 pub mod sphere;
-pub mod triangle;
 
 pub use cone::Cone;
+pub use packed::{PackedPolygon, Quad, Triangle};
 pub use polygon::Polygon;
 pub use ring::Ring;
-pub use sphere::Sphere;
-pub use triangle::Triangle;
+pub use sphere::{PackedSphere, Sphere};
 
 use crate::math::{Bounds, FTINY};
 use crate::ray::{Ray, ShapeHit};
