@@ -10,6 +10,7 @@ use crate::materials::{Material, MaterialId};
 use crate::math::{Color, FHUGE, FTINY, Vec3, brightness, intensity};
 use crate::ray::{ObjectId, Ray};
 use crate::scene::Scene;
+use crate::shapes::Shape;
 
 /// Ray types (Radiance's `PRIMARY`, `RSHADOW`, ... flags); a ray's `kind` is its own
 /// type or'ed with its ancestors'.
@@ -276,11 +277,16 @@ pub const MAX_CHAIN: u32 = 10_000;
 
 /// Absorption along a ray inside a medium (`rayparticipate` without scattering).
 fn participate(r: &mut RayState) {
-    if r.extinction.max_element() <= 1.0 / FHUGE {
-        return;
+    r.color = absorbed(r.color, r.extinction, r.length);
+}
+
+/// `color` after `length` through a medium of extinction coefficient `extinction`.
+fn absorbed(color: Color, extinction: Color, length: f64) -> Color {
+    if extinction.max_element() <= 1.0 / FHUGE {
+        return color;
     }
     let att = |k: f64| {
-        let e = r.length * k;
+        let e = length * k;
         if e <= FTINY {
             1.0
         } else if e > 92.0 {
@@ -289,11 +295,28 @@ fn participate(r: &mut RayState) {
             (-e).exp()
         }
     };
-    r.color *= Color::new(
-        att(r.extinction.x),
-        att(r.extinction.y),
-        att(r.extinction.z),
-    );
+    color * Color::new(att(extinction.x), att(extinction.y), att(extinction.z))
+}
+
+/// The weight of a child of `r` whose coefficient has intensity `rw` (at most 1): the
+/// parent's path through an absorbing medium weakens what follows it.
+fn child_weight(r: &RayState, rw: f64) -> f64 {
+    let weight = r.weight * rw;
+    let re = r.extinction.min_element() * r.length;
+    if re > 0.1 {
+        if re > 92.0 { 0.0 } else { weight * (-re).exp() }
+    } else {
+        weight
+    }
+}
+
+/// Whether `r` may have a child of weight `weight` at all (the limits of `rayorigin`
+/// that hold for every kind, shadow rays included).
+fn may_spawn(r: &RayState, weight: f64) -> bool {
+    if r.length >= FHUGE * 0.99 || r.depth >= MAX_CHAIN {
+        return false;
+    }
+    weight > 0.0
 }
 
 /// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
@@ -482,28 +505,17 @@ impl<'a> Tracer<'a> {
         coef: Option<Color>,
         salt: u64,
     ) -> Option<RayState> {
-        if r.length >= FHUGE * 0.99 {
+        let rw = coef.map_or(1.0, |c| intensity(c).min(1.0));
+        let mut weight = child_weight(r, rw);
+        if !may_spawn(r, weight) {
             return None;
         }
-        let rw = coef.map_or(1.0, |c| intensity(c).min(1.0));
         let reflects = kind.reflects();
         let child_kind = r.kind | kind;
         let mut child_coef = coef.unwrap_or(Color::ONE);
-        let mut weight = r.weight * rw;
-        // The parent's path through an absorbing medium weakens what follows it.
-        let re = r.extinction.min_element() * r.length;
-        if re > 0.1 {
-            weight = if re > 92.0 { 0.0 } else { weight * (-re).exp() };
-        }
         let level = r.level + u32::from(reflects);
         let depth = r.depth + 1;
         let seed = crate::random::derive(r.seed, salt);
-        if depth > MAX_CHAIN {
-            return None;
-        }
-        if weight <= 0.0 || weight.is_nan() {
-            return None;
-        }
         if !child_kind.any(RayKind::SHADOW) {
             let o = &self.options;
             let limit = o.max_depth.unsigned_abs();
@@ -749,6 +761,66 @@ impl<'a> Tracer<'a> {
     /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
     /// blocked.
     fn source_contribution(&self, r: &RayState, si: usize, dir: Vec3, c: Color) -> Option<Color> {
+        let source = self.scene.sources.get(si)?;
+        if self.scene.opaque_to_object_shadows
+            && source.parent.is_none()
+            && let SourceTarget::Object(target) = source.target
+            && let Some(v) = self.object_source_shadow(r, target, dir, c)
+        {
+            return v;
+        }
+        self.traced_source_contribution(r, si, dir, c)
+    }
+
+    /// [`Tracer::source_contribution`] toward the surface source `target` (no virtual
+    /// one) in a scene opaque to object shadows, without a shadow ray's state: the
+    /// value `source_value` finds from the emitter alone, kept when the source is the
+    /// nearest surface. `None` where the emitter's value needs a ray (an `illum`, a
+    /// back seen with `-bv-`): then the general path decides.
+    fn object_source_shadow(
+        &self,
+        r: &RayState,
+        target: u32,
+        dir: Vec3,
+        c: Color,
+    ) -> Option<Option<Color>> {
+        // The shadow ray `spawn` would make: unweighted, so only its limits matter.
+        if !may_spawn(r, child_weight(r, 1.0)) {
+            return Some(None);
+        }
+        let Some(obj) = self.scene.object(target) else {
+            return Some(None);
+        };
+        let Some(Material::Emitter(e)) = obj.material.and_then(|m| self.scene.material(m)) else {
+            return None;
+        };
+        let ray = Ray::new(r.point, dir);
+        let hit = match &obj.shape {
+            Shape::Sphere(s) => s.intersect_within(&ray, f64::INFINITY),
+            shape => shape.intersect(&ray),
+        };
+        let Some(h) = hit else {
+            return Some(None);
+        };
+        let seen = e.aimed_shadow_radiance(h.rod, dir, self.options.backface_visible)?;
+        let v = absorbed(seen, r.extinction, h.t) * c;
+        // As in the general path below: only whether the source is the nearest surface
+        // matters, settled by the first clear blocker.
+        let settle = h.t - SETTLE * (FTINY + 1e-6 * h.t);
+        Some(match self.nearest(&ray, h.t, settle) {
+            Some(b) if b.object != target => None,
+            _ => Some(v),
+        })
+    }
+
+    /// [`Tracer::source_contribution`] by a shadow ray's full state.
+    fn traced_source_contribution(
+        &self,
+        r: &RayState,
+        si: usize,
+        dir: Vec3,
+        c: Color,
+    ) -> Option<Color> {
         // Worked on inside its `Option` (moving it out would copy the whole state).
         let mut spawned = self.spawn(r, RayKind::SHADOW, None);
         let sr = spawned.as_mut()?;
