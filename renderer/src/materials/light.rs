@@ -155,6 +155,7 @@ impl Emitter {
     /// source, the one it is aimed at, with `rod` (the ray's colour before the medium
     /// along it): `None` where that is no value of the emitter alone (an `illum`, which
     /// shows its alternate, or the back seen with `-bv-`, which passes the ray on).
+    #[inline]
     pub fn aimed_shadow_radiance(
         &self,
         rod: f64,
