@@ -567,7 +567,9 @@ impl Source {
                 // Radiance's one sample of a sphere, its centre: `partition_samples`'
                 // `sample` of `WHOLE` without offsets (centre 0 / MAXSPART, size
                 // MAXSPART / MAXSPART on each axis), with nothing of it to look up.
-                out.extend(sphere_sample(center, radius, org, [0.0; 3], [1.0; 3]));
+                if let Some(s) = sphere_sample(center, radius, org, [0.0; 3], [1.0; 3]) {
+                    out.push(s);
+                }
             }
             _ => {
                 if !(exact && self.exact_samples(org, weight, size_ratio, jitter, out)) {
