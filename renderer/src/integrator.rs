@@ -130,8 +130,8 @@ pub enum Target {
 
 thread_local! {
     /// [`Tracer::direct`]'s source samples, kept between calls.
-    static SAMPLE_BUFFER: std::cell::RefCell<Vec<SourceSample>> =
-        const { std::cell::RefCell::new(Vec::new()) };
+    static SAMPLE_BUFFER: std::cell::Cell<Vec<SourceSample>> =
+        const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
@@ -727,7 +727,7 @@ impl<'a> Tracer<'a> {
         // The thread's sample buffer, taken for this call so that no call allocates
         // once it has grown (a nested call, through a shadow ray, finds it empty and
         // uses a fresh one).
-        let mut samples = SAMPLE_BUFFER.with(|b| std::mem::take(&mut *b.borrow_mut()));
+        let mut samples = SAMPLE_BUFFER.take();
         for (si, s) in self.scene.sources.iter().enumerate() {
             samples.clear();
             let jitter = (self.options.source_jitter > 0.0).then(|| {
@@ -755,7 +755,7 @@ impl<'a> Tracer<'a> {
             }
         }
         samples.clear();
-        SAMPLE_BUFFER.with(|b| *b.borrow_mut() = samples);
+        SAMPLE_BUFFER.set(samples);
     }
 
     /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
@@ -1020,6 +1020,98 @@ mod tests {
                 b.to_array().map(f64::to_bits),
                 "ray {k}"
             );
+        }
+    }
+
+    /// The shadow rays of a scene opaque to them bring, without a ray state, what the
+    /// general path's shadow rays bring, bit for bit: toward a spotlight (inside and
+    /// outside its cone), a glow, a lamp seen from inside (its back, also with `-bv-`,
+    /// which passes the ray on), through an absorbing medium (`-me`) and with `-dv-`.
+    #[test]
+    fn light_shadow_rays_match_the_general_path() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        let glow = b.add(
+            "glow",
+            "glow",
+            None,
+            PrimKind::Glow {
+                color: [4.0, 5.0, 6.0],
+                max_radius: 1.2,
+            },
+        );
+        let spot = b.add(
+            "spotlight",
+            "spot",
+            None,
+            PrimKind::Spotlight {
+                color: [20.0, 10.0, 5.0],
+                angle: 40.0,
+                direction: [0.3, 0.0, -1.0],
+            },
+        );
+        b.square("floor", grey, 0.0, true);
+        let sphere = |b: &mut IrBuilder, name: &str, m: u32, c: [f64; 3], r: f64| {
+            b.add(
+                "sphere",
+                name,
+                Some(m),
+                PrimKind::Sphere {
+                    center: c,
+                    radius: r,
+                },
+            );
+        };
+        sphere(&mut b, "lamp", lamp, [0.0, 0.0, 1.5], 0.1);
+        sphere(&mut b, "around", lamp, [-0.5, -0.5, 0.15], 0.3);
+        sphere(&mut b, "glow", glow, [0.5, 0.5, 0.8], 0.1);
+        sphere(&mut b, "spot", spot, [0.4, -0.4, 1.2], 0.05);
+        sphere(&mut b, "ball", grey, [0.3, -0.1, 0.4], 0.15);
+        let mut scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(scene.opaque_to_object_shadows);
+        let variants = [
+            Options::default(),
+            Options {
+                backface_visible: false,
+                ..Options::default()
+            },
+            Options {
+                medium: Color::new(0.1, 0.2, 0.4),
+                ..Options::default()
+            },
+            Options {
+                direct_visible: false,
+                ..Options::default()
+            },
+        ];
+        for options in variants {
+            let mut pixels = Vec::new();
+            for pass in 0..2 {
+                scene.opaque_to_object_shadows = pass == 0;
+                let t = Tracer::new(&scene, options.clone());
+                let mut colors = Vec::new();
+                for i in 0..30 {
+                    for j in 0..30 {
+                        let aim = Vec3::new(i as f64 / 15.0 - 1.0, j as f64 / 15.0 - 1.0, 0.0);
+                        let org = Vec3::new(0.05, -0.02, 1.3);
+                        colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
+                        // `-I` points on the floor, some of them inside the lamp around
+                        // (-0.5, -0.5, 0.15), which they see from the back.
+                        colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
+                    }
+                }
+                pixels.push(colors);
+            }
+            let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
+            assert!(lit > 200, "the floor is lit ({lit} of 1800)");
+            for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
+                assert_eq!(
+                    a.to_array().map(f64::to_bits),
+                    b.to_array().map(f64::to_bits),
+                    "ray {k} with {options:?}"
+                );
+            }
         }
     }
 
