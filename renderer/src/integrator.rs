@@ -769,7 +769,41 @@ impl<'a> Tracer<'a> {
         {
             return v;
         }
+        if self.scene.opaque_to_shadows
+            && source.parent.is_none()
+            && let SourceTarget::Distant(d) = source.target
+            && let Some(v) = self.distant_source_shadow(r, d, dir, c)
+        {
+            return v;
+        }
         self.traced_source_contribution(r, si, dir, c)
+    }
+
+    /// [`Tracer::source_contribution`] toward the distant source `d` (no virtual one)
+    /// in a scene opaque to shadows, without a shadow ray's state: the value
+    /// `source_value` finds from the emitter alone (a fresh shadow ray faces it, and
+    /// travels `FHUGE` through the medium), kept when the ray hits nothing. `None`
+    /// where that needs the general path (an `illum`).
+    fn distant_source_shadow(
+        &self,
+        r: &RayState,
+        d: u32,
+        dir: Vec3,
+        c: Color,
+    ) -> Option<Option<Color>> {
+        if !may_spawn(r, child_weight(r, 1.0)) {
+            return Some(None);
+        }
+        let Some(distant) = self.scene.distant.get(d as usize) else {
+            return Some(None);
+        };
+        let Some(Material::Emitter(e)) = distant.material.and_then(|m| self.scene.material(m))
+        else {
+            return None;
+        };
+        let seen = e.aimed_shadow_radiance(1.0, dir, self.options.backface_visible)?;
+        let v = absorbed(seen, r.extinction, FHUGE) * c;
+        Some((!self.hits_anything(&Ray::new(r.point, dir))).then_some(v))
     }
 
     /// [`Tracer::source_contribution`] toward the surface source `target` (no virtual
@@ -1105,6 +1139,82 @@ mod tests {
             }
             let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
             assert!(lit > 200, "the floor is lit ({lit} of 1800)");
+            for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
+                assert_eq!(
+                    a.to_array().map(f64::to_bits),
+                    b.to_array().map(f64::to_bits),
+                    "ray {k} with {options:?}"
+                );
+            }
+        }
+    }
+
+    /// Shadow rays toward a distant source in a scene opaque to shadows bring, without
+    /// a ray state, what the general path's bring, bit for bit (also through `-me`).
+    #[test]
+    fn distant_shadow_rays_match_the_general_path() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let sun = b.add(
+            "light",
+            "sunlight",
+            None,
+            PrimKind::Light {
+                color: [6e6, 6e6, 5.5e6],
+            },
+        );
+        b.add(
+            "source",
+            "sun",
+            Some(sun),
+            PrimKind::Source {
+                direction: [0.4, 0.3, 0.85],
+                angle: 0.5,
+            },
+        );
+        b.square("floor", grey, 0.0, true);
+        for (k, c) in [[0.3, -0.4, 0.2], [-0.2, 0.3, 0.1]].into_iter().enumerate() {
+            b.add(
+                "sphere",
+                &format!("ball{k}"),
+                Some(grey),
+                PrimKind::Sphere {
+                    center: c,
+                    radius: 0.15,
+                },
+            );
+        }
+        let mut scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(scene.opaque_to_shadows);
+        let variants = [
+            Options::default(),
+            Options {
+                medium: Color::new(1e-9, 2e-9, 4e-9),
+                ..Options::default()
+            },
+            Options {
+                backface_visible: false,
+                direct_visible: false,
+                ..Options::default()
+            },
+        ];
+        for options in variants {
+            let mut pixels = Vec::new();
+            for pass in 0..2 {
+                scene.opaque_to_shadows = pass == 0;
+                let t = Tracer::new(&scene, options.clone());
+                let mut colors = Vec::new();
+                for i in 0..30 {
+                    for j in 0..30 {
+                        let aim = Vec3::new(i as f64 / 15.0 - 1.0, j as f64 / 15.0 - 1.0, 0.0);
+                        let org = Vec3::new(0.05, -0.02, 0.5);
+                        colors.push(t.radiance(org, (aim - org).normalize()).color);
+                    }
+                }
+                pixels.push(colors);
+            }
+            let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
+            assert!(lit > 100, "the floor is lit ({lit} of 900)");
             for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
                 assert_eq!(
                     a.to_array().map(f64::to_bits),
