@@ -10,6 +10,7 @@ use crate::materials::{Material, MaterialId};
 use crate::math::{Color, FHUGE, FTINY, Vec3, brightness, intensity};
 use crate::ray::{ObjectId, Ray};
 use crate::scene::Scene;
+use crate::shapes::Shape;
 
 /// Ray types (Radiance's `PRIMARY`, `RSHADOW`, ... flags); a ray's `kind` is its own
 /// type or'ed with its ancestors'.
@@ -129,8 +130,8 @@ pub enum Target {
 
 thread_local! {
     /// [`Tracer::direct`]'s source samples, kept between calls.
-    static SAMPLE_BUFFER: std::cell::RefCell<Vec<SourceSample>> =
-        const { std::cell::RefCell::new(Vec::new()) };
+    static SAMPLE_BUFFER: std::cell::Cell<Vec<SourceSample>> =
+        const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
@@ -276,11 +277,16 @@ pub const MAX_CHAIN: u32 = 10_000;
 
 /// Absorption along a ray inside a medium (`rayparticipate` without scattering).
 fn participate(r: &mut RayState) {
-    if r.extinction.max_element() <= 1.0 / FHUGE {
-        return;
+    r.color = absorbed(r.color, r.extinction, r.length);
+}
+
+/// `color` after `length` through a medium of extinction coefficient `extinction`.
+fn absorbed(color: Color, extinction: Color, length: f64) -> Color {
+    if extinction.max_element() <= 1.0 / FHUGE {
+        return color;
     }
     let att = |k: f64| {
-        let e = r.length * k;
+        let e = length * k;
         if e <= FTINY {
             1.0
         } else if e > 92.0 {
@@ -289,11 +295,28 @@ fn participate(r: &mut RayState) {
             (-e).exp()
         }
     };
-    r.color *= Color::new(
-        att(r.extinction.x),
-        att(r.extinction.y),
-        att(r.extinction.z),
-    );
+    color * Color::new(att(extinction.x), att(extinction.y), att(extinction.z))
+}
+
+/// The weight of a child of `r` whose coefficient has intensity `rw` (at most 1): the
+/// parent's path through an absorbing medium weakens what follows it.
+fn child_weight(r: &RayState, rw: f64) -> f64 {
+    let weight = r.weight * rw;
+    let re = r.extinction.min_element() * r.length;
+    if re > 0.1 {
+        if re > 92.0 { 0.0 } else { weight * (-re).exp() }
+    } else {
+        weight
+    }
+}
+
+/// Whether `r` may have a child of weight `weight` at all (the limits of `rayorigin`
+/// that hold for every kind, shadow rays included).
+fn may_spawn(r: &RayState, weight: f64) -> bool {
+    if r.length >= FHUGE * 0.99 || r.depth >= MAX_CHAIN {
+        return false;
+    }
+    weight > 0.0
 }
 
 /// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
@@ -482,28 +505,17 @@ impl<'a> Tracer<'a> {
         coef: Option<Color>,
         salt: u64,
     ) -> Option<RayState> {
-        if r.length >= FHUGE * 0.99 {
+        let rw = coef.map_or(1.0, |c| intensity(c).min(1.0));
+        let mut weight = child_weight(r, rw);
+        if !may_spawn(r, weight) {
             return None;
         }
-        let rw = coef.map_or(1.0, |c| intensity(c).min(1.0));
         let reflects = kind.reflects();
         let child_kind = r.kind | kind;
         let mut child_coef = coef.unwrap_or(Color::ONE);
-        let mut weight = r.weight * rw;
-        // The parent's path through an absorbing medium weakens what follows it.
-        let re = r.extinction.min_element() * r.length;
-        if re > 0.1 {
-            weight = if re > 92.0 { 0.0 } else { weight * (-re).exp() };
-        }
         let level = r.level + u32::from(reflects);
         let depth = r.depth + 1;
         let seed = crate::random::derive(r.seed, salt);
-        if depth > MAX_CHAIN {
-            return None;
-        }
-        if weight <= 0.0 || weight.is_nan() {
-            return None;
-        }
         if !child_kind.any(RayKind::SHADOW) {
             let o = &self.options;
             let limit = o.max_depth.unsigned_abs();
@@ -715,7 +727,7 @@ impl<'a> Tracer<'a> {
         // The thread's sample buffer, taken for this call so that no call allocates
         // once it has grown (a nested call, through a shadow ray, finds it empty and
         // uses a fresh one).
-        let mut samples = SAMPLE_BUFFER.with(|b| std::mem::take(&mut *b.borrow_mut()));
+        let mut samples = SAMPLE_BUFFER.take();
         for (si, s) in self.scene.sources.iter().enumerate() {
             samples.clear();
             let jitter = (self.options.source_jitter > 0.0).then(|| {
@@ -743,12 +755,106 @@ impl<'a> Tracer<'a> {
             }
         }
         samples.clear();
-        SAMPLE_BUFFER.with(|b| *b.borrow_mut() = samples);
+        SAMPLE_BUFFER.set(samples);
     }
 
     /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
     /// blocked.
     fn source_contribution(&self, r: &RayState, si: usize, dir: Vec3, c: Color) -> Option<Color> {
+        let source = self.scene.sources.get(si)?;
+        if self.scene.opaque_to_object_shadows
+            && source.parent.is_none()
+            && let SourceTarget::Object(target) = source.target
+            && let Some(v) = self.object_source_shadow(r, target, dir, c)
+        {
+            return v;
+        }
+        if self.scene.opaque_to_shadows
+            && source.parent.is_none()
+            && let SourceTarget::Distant(d) = source.target
+            && let Some(v) = self.distant_source_shadow(r, d, dir, c)
+        {
+            return v;
+        }
+        self.traced_source_contribution(r, si, dir, c)
+    }
+
+    /// [`Tracer::source_contribution`] toward the distant source `d` (no virtual one)
+    /// in a scene opaque to shadows, without a shadow ray's state: the value
+    /// `source_value` finds from the emitter alone (a fresh shadow ray faces it, and
+    /// travels `FHUGE` through the medium), kept when the ray hits nothing. `None`
+    /// where that needs the general path (an `illum`).
+    fn distant_source_shadow(
+        &self,
+        r: &RayState,
+        d: u32,
+        dir: Vec3,
+        c: Color,
+    ) -> Option<Option<Color>> {
+        if !may_spawn(r, child_weight(r, 1.0)) {
+            return Some(None);
+        }
+        let Some(distant) = self.scene.distant.get(d as usize) else {
+            return Some(None);
+        };
+        let Some(Material::Emitter(e)) = distant.material.and_then(|m| self.scene.material(m))
+        else {
+            return None;
+        };
+        let seen = e.aimed_shadow_radiance(1.0, dir, self.options.backface_visible)?;
+        let v = absorbed(seen, r.extinction, FHUGE) * c;
+        Some((!self.hits_anything(&Ray::new(r.point, dir))).then_some(v))
+    }
+
+    /// [`Tracer::source_contribution`] toward the surface source `target` (no virtual
+    /// one) in a scene opaque to object shadows, without a shadow ray's state: the
+    /// value `source_value` finds from the emitter alone, kept when the source is the
+    /// nearest surface. `None` where the emitter's value needs a ray (an `illum`, a
+    /// back seen with `-bv-`): then the general path decides.
+    fn object_source_shadow(
+        &self,
+        r: &RayState,
+        target: u32,
+        dir: Vec3,
+        c: Color,
+    ) -> Option<Option<Color>> {
+        // The shadow ray `spawn` would make: unweighted, so only its limits matter.
+        if !may_spawn(r, child_weight(r, 1.0)) {
+            return Some(None);
+        }
+        let Some(obj) = self.scene.object(target) else {
+            return Some(None);
+        };
+        let Some(Material::Emitter(e)) = obj.material.and_then(|m| self.scene.material(m)) else {
+            return None;
+        };
+        let ray = Ray::new(r.point, dir);
+        let hit = match &obj.shape {
+            Shape::Sphere(s) => s.intersect_within(&ray, f64::INFINITY),
+            shape => shape.intersect(&ray),
+        };
+        let Some(h) = hit else {
+            return Some(None);
+        };
+        let seen = e.aimed_shadow_radiance(h.rod, dir, self.options.backface_visible)?;
+        let v = absorbed(seen, r.extinction, h.t) * c;
+        // As in the general path below: only whether the source is the nearest surface
+        // matters, settled by the first clear blocker.
+        let settle = h.t - SETTLE * (FTINY + 1e-6 * h.t);
+        Some(match self.nearest(&ray, h.t, settle) {
+            Some(b) if b.object != target => None,
+            _ => Some(v),
+        })
+    }
+
+    /// [`Tracer::source_contribution`] by a shadow ray's full state.
+    fn traced_source_contribution(
+        &self,
+        r: &RayState,
+        si: usize,
+        dir: Vec3,
+        c: Color,
+    ) -> Option<Color> {
         // Worked on inside its `Option` (moving it out would copy the whole state).
         let mut spawned = self.spawn(r, RayKind::SHADOW, None);
         let sr = spawned.as_mut()?;
@@ -948,6 +1054,174 @@ mod tests {
                 b.to_array().map(f64::to_bits),
                 "ray {k}"
             );
+        }
+    }
+
+    /// The shadow rays of a scene opaque to them bring, without a ray state, what the
+    /// general path's shadow rays bring, bit for bit: toward a spotlight (inside and
+    /// outside its cone), a glow, a lamp seen from inside (its back, also with `-bv-`,
+    /// which passes the ray on), through an absorbing medium (`-me`) and with `-dv-`.
+    #[test]
+    fn light_shadow_rays_match_the_general_path() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        let glow = b.add(
+            "glow",
+            "glow",
+            None,
+            PrimKind::Glow {
+                color: [4.0, 5.0, 6.0],
+                max_radius: 1.2,
+            },
+        );
+        let spot = b.add(
+            "spotlight",
+            "spot",
+            None,
+            PrimKind::Spotlight {
+                color: [20.0, 10.0, 5.0],
+                angle: 40.0,
+                direction: [0.3, 0.0, -1.0],
+            },
+        );
+        b.square("floor", grey, 0.0, true);
+        let sphere = |b: &mut IrBuilder, name: &str, m: u32, c: [f64; 3], r: f64| {
+            b.add(
+                "sphere",
+                name,
+                Some(m),
+                PrimKind::Sphere {
+                    center: c,
+                    radius: r,
+                },
+            );
+        };
+        sphere(&mut b, "lamp", lamp, [0.0, 0.0, 1.5], 0.1);
+        sphere(&mut b, "around", lamp, [-0.5, -0.5, 0.15], 0.3);
+        sphere(&mut b, "glow", glow, [0.5, 0.5, 0.8], 0.1);
+        sphere(&mut b, "spot", spot, [0.4, -0.4, 1.2], 0.05);
+        sphere(&mut b, "ball", grey, [0.3, -0.1, 0.4], 0.15);
+        let mut scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(scene.opaque_to_object_shadows);
+        let variants = [
+            Options::default(),
+            Options {
+                backface_visible: false,
+                ..Options::default()
+            },
+            Options {
+                medium: Color::new(0.1, 0.2, 0.4),
+                ..Options::default()
+            },
+            Options {
+                direct_visible: false,
+                ..Options::default()
+            },
+        ];
+        for options in variants {
+            let mut pixels = Vec::new();
+            for pass in 0..2 {
+                scene.opaque_to_object_shadows = pass == 0;
+                let t = Tracer::new(&scene, options.clone());
+                let mut colors = Vec::new();
+                for i in 0..30 {
+                    for j in 0..30 {
+                        let aim = Vec3::new(i as f64 / 15.0 - 1.0, j as f64 / 15.0 - 1.0, 0.0);
+                        let org = Vec3::new(0.05, -0.02, 1.3);
+                        colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
+                        // `-I` points on the floor, some of them inside the lamp around
+                        // (-0.5, -0.5, 0.15), which they see from the back.
+                        colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
+                    }
+                }
+                pixels.push(colors);
+            }
+            let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
+            assert!(lit > 200, "the floor is lit ({lit} of 1800)");
+            for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
+                assert_eq!(
+                    a.to_array().map(f64::to_bits),
+                    b.to_array().map(f64::to_bits),
+                    "ray {k} with {options:?}"
+                );
+            }
+        }
+    }
+
+    /// Shadow rays toward a distant source in a scene opaque to shadows bring, without
+    /// a ray state, what the general path's bring, bit for bit (also through `-me`).
+    #[test]
+    fn distant_shadow_rays_match_the_general_path() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let sun = b.add(
+            "light",
+            "sunlight",
+            None,
+            PrimKind::Light {
+                color: [6e6, 6e6, 5.5e6],
+            },
+        );
+        b.add(
+            "source",
+            "sun",
+            Some(sun),
+            PrimKind::Source {
+                direction: [0.4, 0.3, 0.85],
+                angle: 0.5,
+            },
+        );
+        b.square("floor", grey, 0.0, true);
+        for (k, c) in [[0.3, -0.4, 0.2], [-0.2, 0.3, 0.1]].into_iter().enumerate() {
+            b.add(
+                "sphere",
+                &format!("ball{k}"),
+                Some(grey),
+                PrimKind::Sphere {
+                    center: c,
+                    radius: 0.15,
+                },
+            );
+        }
+        let mut scene = Scene::compile(&b.scene).expect("compiles");
+        assert!(scene.opaque_to_shadows);
+        let variants = [
+            Options::default(),
+            Options {
+                medium: Color::new(1e-9, 2e-9, 4e-9),
+                ..Options::default()
+            },
+            Options {
+                backface_visible: false,
+                direct_visible: false,
+                ..Options::default()
+            },
+        ];
+        for options in variants {
+            let mut pixels = Vec::new();
+            for pass in 0..2 {
+                scene.opaque_to_shadows = pass == 0;
+                let t = Tracer::new(&scene, options.clone());
+                let mut colors = Vec::new();
+                for i in 0..30 {
+                    for j in 0..30 {
+                        let aim = Vec3::new(i as f64 / 15.0 - 1.0, j as f64 / 15.0 - 1.0, 0.0);
+                        let org = Vec3::new(0.05, -0.02, 0.5);
+                        colors.push(t.radiance(org, (aim - org).normalize()).color);
+                    }
+                }
+                pixels.push(colors);
+            }
+            let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
+            assert!(lit > 100, "the floor is lit ({lit} of 900)");
+            for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
+                assert_eq!(
+                    a.to_array().map(f64::to_bits),
+                    b.to_array().map(f64::to_bits),
+                    "ray {k} with {options:?}"
+                );
+            }
         }
     }
 

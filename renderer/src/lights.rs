@@ -525,6 +525,7 @@ fn disk_cells(frame: &DiskFrame, weight: f64, ds: f64) -> Vec<DiskCell> {
 
 impl Source {
     /// Whether a point is too far from a `glow` source to be lit by it.
+    #[inline]
     fn skipped_from(&self, org: Vec3) -> bool {
         let Some(prox) = self.proximity else {
             return false;
@@ -547,6 +548,7 @@ impl Source {
     /// moves; `None` keeps the centres. With `exact` (`-dx+`), convex polygons, disks,
     /// spheres and distant sources are sampled with each partition's exact solid angle
     /// ([`Source::exact_samples`]).
+    #[inline]
     pub fn jittered_samples(
         &self,
         org: Vec3,
@@ -560,8 +562,23 @@ impl Source {
             return;
         }
         let start = out.len();
-        if !(exact && self.exact_samples(org, weight, size_ratio, jitter, out)) {
-            self.partition_samples(org, weight, size_ratio, jitter, out);
+        match (&self.shape, jitter) {
+            (&SourceShape::Sphere { center, radius }, None) if !exact => {
+                // Radiance's one sample of a sphere, its centre: `partition_samples`'
+                // `sample` of `WHOLE` without offsets (centre 0 / MAXSPART, size
+                // MAXSPART / MAXSPART on each axis), with nothing of it to look up.
+                if let Some(s) = sphere_sample(center, radius, org, [0.0; 3], [1.0; 3]) {
+                    out.push(s);
+                }
+            }
+            _ => {
+                if !(exact && self.exact_samples(org, weight, size_ratio, jitter, out)) {
+                    self.partition_samples(org, weight, size_ratio, jitter, out);
+                }
+            }
+        }
+        if self.proximity.is_none() && self.beam.is_none() && self.spot.is_none() {
+            return; // `accepted` keeps every sample as it is
         }
         let mut kept = start;
         for i in start..out.len() {
@@ -988,20 +1005,7 @@ impl Source {
         }
         match &self.shape {
             SourceShape::Sphere { center, radius } => {
-                // Jittered: a point of the cube inscribed in the sphere, so that every
-                // shadow ray still meets it (the solid angle stays the whole sphere's).
-                let half = *radius * (1.0 / 3.0f64).sqrt();
-                let mut dir = *center + Vec3::from_array(vpos) * half - org;
-                let d = normalize(&mut dir);
-                if d == 0.0 {
-                    return None;
-                }
-                let omega = frac(0) * frac(1) * frac(2) * std::f64::consts::PI * radius * radius;
-                Some(SourceSample {
-                    dir,
-                    omega: omega / (d * d),
-                    dist: d,
-                })
+                sphere_sample(*center, *radius, org, vpos, [frac(0), frac(1), frac(2)])
             }
             SourceShape::Flat {
                 center,
@@ -1083,6 +1087,32 @@ impl Source {
             }
         }
     }
+}
+
+/// The sample of a sphere source's partition at `vpos` (each in -1..1) of size `frac`
+/// (fractions of the whole per axis): jittered, a point of the cube inscribed in the
+/// sphere, so that every shadow ray still meets it (the solid angle stays the whole
+/// sphere's).
+#[inline]
+fn sphere_sample(
+    center: Vec3,
+    radius: f64,
+    org: Vec3,
+    vpos: [f64; 3],
+    frac: [f64; 3],
+) -> Option<SourceSample> {
+    let half = radius * (1.0 / 3.0f64).sqrt();
+    let mut dir = center + Vec3::from_array(vpos) * half - org;
+    let d = normalize(&mut dir);
+    if d == 0.0 {
+        return None;
+    }
+    let omega = frac[0] * frac[1] * frac[2] * std::f64::consts::PI * radius * radius;
+    Some(SourceSample {
+        dir,
+        omega: omega / (d * d),
+        dist: d,
+    })
 }
 
 /// A cylinder source's partitions along its axis (`cylpart`): none for points within

@@ -134,12 +134,41 @@ impl Emitter {
             }
             return;
         }
-        if let EmitterKind::Spot(spot) = &self.kind
-            && spot.excludes(r.dir)
-        {
-            return;
+        if let Some(c) = self.front_radiance(r.dir) {
+            r.color = c;
         }
-        r.color = self.color;
+    }
+
+    /// The radiance a ray along `dir` sees on the front of the surface: the colour,
+    /// unless the ray is outside a spotlight's cone (then `None`: the ray keeps its
+    /// colour).
+    fn front_radiance(&self, dir: Vec3) -> Option<Color> {
+        if let EmitterKind::Spot(spot) = &self.kind
+            && spot.excludes(dir)
+        {
+            return None;
+        }
+        Some(self.color)
+    }
+
+    /// What [`Emitter::shade`] leaves in a fresh shadow ray along `dir` that meets this
+    /// source, the one it is aimed at, with `rod` (the ray's colour before the medium
+    /// along it): `None` where that is no value of the emitter alone (an `illum`, which
+    /// shows its alternate, or the back seen with `-bv-`, which passes the ray on).
+    #[inline]
+    pub fn aimed_shadow_radiance(
+        &self,
+        rod: f64,
+        dir: Vec3,
+        backface_visible: bool,
+    ) -> Option<Color> {
+        if matches!(self.kind, EmitterKind::Illum { .. }) {
+            return None;
+        }
+        if rod < 0.0 {
+            return backface_visible.then_some(Color::ZERO);
+        }
+        Some(self.front_radiance(dir).unwrap_or(Color::ZERO))
     }
 
     pub fn is_weak(&self) -> bool {

@@ -259,6 +259,7 @@ impl Shading {
     /// The coefficient turning a source's radiance into reflected (or transmitted)
     /// radiance, for a source sample in direction `ldir` of solid angle `omega`
     /// (normal.c's `dirnorm`).
+    #[inline]
     pub fn source_coefficient(&self, ldir: Vec3, omega: f64) -> Color {
         let ldot = self.normal.dot(ldir);
         let mut out = Color::ZERO;
