@@ -7,7 +7,7 @@
 //! children at once in `f32` vector arithmetic whose rounding is bounded and allowed
 //! for, so that a box test can only err towards visiting.
 
-use crate::math::{Bounds, Vec3};
+use crate::math::{Bounds, Vec3, prefetch};
 use crate::ray::Ray;
 
 const BINS: usize = 16;
@@ -128,24 +128,6 @@ impl Node {
         }
         self.child[lane] = link;
     }
-}
-
-/// Asks for both cache lines of `n` (a hint: no effect on results).
-#[inline(always)]
-fn prefetch(n: &Node) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let p = (n as *const Node).cast::<i8>();
-        // SAFETY: a prefetch never faults and reads nothing the program sees; the
-        // address is that of a live node (and of its second line, inside it).
-        unsafe {
-            _mm_prefetch::<_MM_HINT_T0>(p);
-            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = n;
 }
 
 /// `x` rounded down to an `f32` (never above `x`).

@@ -612,6 +612,9 @@ impl<'a> Tracer<'a> {
                 };
                 if !self.rejects(best.as_ref(), &cand) {
                     best = Some(cand);
+                    // Shading the hit reads its `HitInfo`: in a large scene a miss,
+                    // started here while traversal goes on.
+                    scene.prefetch_hit_info(object);
                     if cand.t < settle {
                         return -1.0;
                     }

@@ -220,6 +220,14 @@ impl Scene {
         self.objects.get(i as usize)
     }
 
+    /// Starts fetching object `i`'s [`HitInfo`] (a hint).
+    #[inline(always)]
+    pub fn prefetch_hit_info(&self, i: u32) {
+        if let Some(h) = self.hits.get(i as usize) {
+            crate::math::prefetch(h);
+        }
+    }
+
     /// What a hit on object `i` needs of it ([`Scene::pack_surfaces`] must have run).
     #[inline]
     pub fn hit_info(&self, i: u32) -> Option<HitInfo> {
