@@ -8,7 +8,7 @@ use crate::lights::{SourceSample, SourceTarget};
 use crate::materials::plastic::Normal;
 use crate::materials::{Material, MaterialId};
 use crate::math::{Color, FHUGE, FTINY, Vec3, brightness, intensity};
-use crate::ray::{ObjectId, Ray};
+use crate::ray::{ObjectId, Ray, ShapeHit};
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
@@ -404,7 +404,7 @@ impl<'a> Tracer<'a> {
         } else {
             f64::INFINITY
         };
-        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit, f64::NEG_INFINITY) {
+        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit, f64::NEG_INFINITY, None) {
             r.hit = Target::Object(ObjectId(c.object));
             r.length = c.t;
             r.point = r.org + r.dir * c.t;
@@ -594,14 +594,30 @@ impl<'a> Tracer<'a> {
     /// With `settle` above 0 the search may end at the first accepted hit nearer than
     /// it, which is then returned in place of the nearest: for callers to whom any
     /// surface that near is as good as the nearest one.
-    fn nearest(&self, ray: &Ray, limit: f64, settle: f64) -> Option<Candidate> {
+    ///
+    /// `known`: an object whose hit along `ray` the caller has already found (as
+    /// [`Shape::intersect`] finds it), used instead of testing the object again.
+    fn nearest(
+        &self,
+        ray: &Ray,
+        limit: f64,
+        settle: f64,
+        known: Option<(u32, ShapeHit)>,
+    ) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
         let scene = self.scene;
         scene.bvh.traverse(ray, limit + FTINY, |slot| {
             // Farther hits are rejected whatever they are (`rejects`): the shape need
             // not finish testing them.
             let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
-            if let Some((object, h)) = scene.surfaces.intersect(slot, &scene.objects, ray, tmax)
+            let found = match known {
+                // `intersect`'s answer: the same hit unless beyond `tmax`.
+                Some((o, h)) if scene.surfaces.object_at(slot) == Some(o) => {
+                    (h.t <= tmax).then_some((o, h))
+                }
+                _ => scene.surfaces.intersect(slot, &scene.objects, ray, tmax),
+            };
+            if let Some((object, h)) = found
                 && h.t <= limit + FTINY
             {
                 let cand = Candidate {
@@ -844,7 +860,7 @@ impl<'a> Tracer<'a> {
         // As in the general path below: only whether the source is the nearest surface
         // matters, settled by the first clear blocker.
         let settle = h.t - SETTLE * (FTINY + 1e-6 * h.t);
-        Some(match self.nearest(&ray, h.t, settle) {
+        Some(match self.nearest(&ray, h.t, settle, Some((target, h))) {
             Some(b) if b.object != target => None,
             _ => Some(v),
         })
@@ -898,12 +914,12 @@ impl<'a> Tracer<'a> {
             // (within FTINY surfaces tie, so only a chain of that many surfaces each
             // within FTINY of the next could pass it on to the source).
             let settle = sr.length - SETTLE * (FTINY + 1e-6 * sr.length);
-            return match self.nearest(&ray, sr.length, settle) {
+            return match self.nearest(&ray, sr.length, settle, None) {
                 Some(h) if h.object != target => None,
                 _ => Some(v),
             };
         }
-        match self.nearest(&ray, f64::INFINITY, f64::NEG_INFINITY) {
+        match self.nearest(&ray, f64::INFINITY, f64::NEG_INFINITY, None) {
             None => value,
             Some(h) if value.is_some() && source.target == SourceTarget::Object(h.object) => value,
             Some(h) => {

@@ -67,6 +67,12 @@ impl Surfaces {
         (OBJECT, 0)
     }
 
+    /// The object in `slot`.
+    #[inline(always)]
+    pub fn object_at(&self, slot: u32) -> Option<u32> {
+        self.slots.get(slot as usize).map(|s| s.0)
+    }
+
     /// The object in `slot` and its hit (as [`Shape::intersect`] finds it), or `None`
     /// when there is none or it lies beyond `tmax`.
     #[inline(always)]
