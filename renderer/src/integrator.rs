@@ -1012,6 +1012,46 @@ mod tests {
         );
     }
 
+    /// Calls `each` with the points of an `n` by `n` grid over the square (-1, -1, 0) to
+    /// (1, 1, 0).
+    fn floor_grid(n: usize, mut each: impl FnMut(Vec3)) {
+        let half = n as f64 / 2.0;
+        for i in 0..n {
+            for j in 0..n {
+                each(Vec3::new(i as f64 / half - 1.0, j as f64 / half - 1.0, 0.0));
+            }
+        }
+    }
+
+    /// Renders with a fast path on (`set(scene, true)`) and off, and asserts the
+    /// colours are the same bit for bit, with more than `min_lit` of them lit.
+    fn assert_same_both_ways(
+        scene: &mut Scene,
+        set: fn(&mut Scene, bool),
+        options: &Options,
+        min_lit: usize,
+        render: impl Fn(&Tracer<'_>) -> Vec<Color>,
+    ) {
+        let mut pixels = Vec::new();
+        for on in [true, false] {
+            set(scene, on);
+            pixels.push(render(&Tracer::new(scene, options.clone())));
+        }
+        let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
+        assert!(
+            lit > min_lit,
+            "the floor is lit ({lit} of {})",
+            pixels[1].len()
+        );
+        for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
+            assert_eq!(
+                a.to_array().map(f64::to_bits),
+                b.to_array().map(f64::to_bits),
+                "ray {k} with {options:?}"
+            );
+        }
+    }
+
     /// Shadow rays toward surface sources in a scene opaque to them end at the first
     /// clear blocker and never look beyond the source (`opaque_to_object_shadows`); the
     /// pixels are those of the full nearest-surface search, bit for bit, also with
@@ -1051,29 +1091,15 @@ mod tests {
         b.square("shelf", grey, 1.4 - 5e-7, false);
         let mut scene = Scene::compile(&b.scene).expect("compiles");
         assert!(scene.opaque_to_object_shadows);
-        let mut pixels = Vec::new();
-        for pass in 0..2 {
-            scene.opaque_to_object_shadows = pass == 0;
-            let t = Tracer::new(&scene, Options::default());
+        let set = |s: &mut Scene, on: bool| s.opaque_to_object_shadows = on;
+        assert_same_both_ways(&mut scene, set, &Options::default(), 100, |t| {
             let mut colors = Vec::new();
-            for i in 0..40 {
-                for j in 0..40 {
-                    let aim = Vec3::new(i as f64 / 20.0 - 1.0, j as f64 / 20.0 - 1.0, 0.0);
-                    let org = Vec3::new(0.05, -0.02, 1.3);
-                    colors.push(t.radiance(org, (aim - org).normalize()).color);
-                }
-            }
-            pixels.push(colors);
-        }
-        let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
-        assert!(lit > 100, "the floor is lit ({lit} of 1600)");
-        for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
-            assert_eq!(
-                a.to_array().map(f64::to_bits),
-                b.to_array().map(f64::to_bits),
-                "ray {k}"
-            );
-        }
+            floor_grid(40, |aim| {
+                let org = Vec3::new(0.05, -0.02, 1.3);
+                colors.push(t.radiance(org, (aim - org).normalize()).color);
+            });
+            colors
+        });
     }
 
     /// The shadow rays of a scene opaque to them bring, without a ray state, what the
@@ -1138,33 +1164,19 @@ mod tests {
                 ..Options::default()
             },
         ];
+        let set = |s: &mut Scene, on: bool| s.opaque_to_object_shadows = on;
         for options in variants {
-            let mut pixels = Vec::new();
-            for pass in 0..2 {
-                scene.opaque_to_object_shadows = pass == 0;
-                let t = Tracer::new(&scene, options.clone());
+            assert_same_both_ways(&mut scene, set, &options, 200, |t| {
                 let mut colors = Vec::new();
-                for i in 0..30 {
-                    for j in 0..30 {
-                        let aim = Vec3::new(i as f64 / 15.0 - 1.0, j as f64 / 15.0 - 1.0, 0.0);
-                        let org = Vec3::new(0.05, -0.02, 1.3);
-                        colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
-                        // `-I` points on the floor, some of them inside the lamp around
-                        // (-0.5, -0.5, 0.15), which they see from the back.
-                        colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
-                    }
-                }
-                pixels.push(colors);
-            }
-            let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
-            assert!(lit > 200, "the floor is lit ({lit} of 1800)");
-            for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
-                assert_eq!(
-                    a.to_array().map(f64::to_bits),
-                    b.to_array().map(f64::to_bits),
-                    "ray {k} with {options:?}"
-                );
-            }
+                floor_grid(30, |aim| {
+                    let org = Vec3::new(0.05, -0.02, 1.3);
+                    colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
+                    // `-I` points on the floor, some of them inside the lamp around
+                    // (-0.5, -0.5, 0.15), which they see from the back.
+                    colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
+                });
+                colors
+            });
         }
     }
 
@@ -1217,30 +1229,16 @@ mod tests {
                 ..Options::default()
             },
         ];
+        let set = |s: &mut Scene, on: bool| s.opaque_to_shadows = on;
         for options in variants {
-            let mut pixels = Vec::new();
-            for pass in 0..2 {
-                scene.opaque_to_shadows = pass == 0;
-                let t = Tracer::new(&scene, options.clone());
+            assert_same_both_ways(&mut scene, set, &options, 100, |t| {
                 let mut colors = Vec::new();
-                for i in 0..30 {
-                    for j in 0..30 {
-                        let aim = Vec3::new(i as f64 / 15.0 - 1.0, j as f64 / 15.0 - 1.0, 0.0);
-                        let org = Vec3::new(0.05, -0.02, 0.5);
-                        colors.push(t.radiance(org, (aim - org).normalize()).color);
-                    }
-                }
-                pixels.push(colors);
-            }
-            let lit = pixels[1].iter().filter(|c| c.max_element() > 0.0).count();
-            assert!(lit > 100, "the floor is lit ({lit} of 900)");
-            for (k, (a, b)) in pixels[0].iter().zip(&pixels[1]).enumerate() {
-                assert_eq!(
-                    a.to_array().map(f64::to_bits),
-                    b.to_array().map(f64::to_bits),
-                    "ray {k} with {options:?}"
-                );
-            }
+                floor_grid(30, |aim| {
+                    let org = Vec3::new(0.05, -0.02, 0.5);
+                    colors.push(t.radiance(org, (aim - org).normalize()).color);
+                });
+                colors
+            });
         }
     }
 
