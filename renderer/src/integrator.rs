@@ -857,13 +857,25 @@ impl<'a> Tracer<'a> {
         };
         let seen = e.aimed_shadow_radiance(h.rod, dir, self.options.backface_visible)?;
         let v = absorbed(seen, r.extinction, h.t) * c;
-        // As in the general path below: only whether the source is the nearest surface
-        // matters, settled by the first clear blocker.
-        let settle = h.t - SETTLE * (FTINY + 1e-6 * h.t);
-        Some(match self.nearest(&ray, h.t, settle, Some((target, h))) {
-            Some(b) if b.object != target => None,
-            _ => Some(v),
-        })
+        Some(
+            self.source_is_nearest(&ray, target, h.t, Some(h))
+                .then_some(v),
+        )
+    }
+
+    /// In a scene opaque to object shadows (`Scene::opaque_to_object_shadows`): whether
+    /// the source `target`, met at `t` along shadow ray `ray` (with `hit`, if the caller
+    /// has it), is the nearest surface; whatever else the ray hits shades it black, so
+    /// that alone decides. The search goes no farther than the source and ends at a
+    /// surface clearly before it: one more than `SETTLE` nearer beats it (within FTINY
+    /// surfaces tie, so only a chain of that many surfaces each within FTINY of the
+    /// next could pass the decision on to the source).
+    fn source_is_nearest(&self, ray: &Ray, target: u32, t: f64, hit: Option<ShapeHit>) -> bool {
+        let settle = t - SETTLE * (FTINY + 1e-6 * t);
+        !matches!(
+            self.nearest(ray, t, settle, hit.map(|h| (target, h))),
+            Some(b) if b.object != target
+        )
     }
 
     /// [`Tracer::source_contribution`] by a shadow ray's full state.
@@ -907,17 +919,10 @@ impl<'a> Tracer<'a> {
         if self.scene.opaque_to_object_shadows
             && let (SourceTarget::Object(target), Some(v)) = (source.target, value)
         {
-            // Whatever else it hits shades it black (`Scene::opaque_to_object_shadows`):
-            // only whether the source is the nearest surface matters. That cannot be
-            // so beyond the source (`sr.length`, where `source_value` met it), nor
-            // with a surface clearly before it: one more than `SETTLE` nearer beats it
-            // (within FTINY surfaces tie, so only a chain of that many surfaces each
-            // within FTINY of the next could pass it on to the source).
-            let settle = sr.length - SETTLE * (FTINY + 1e-6 * sr.length);
-            return match self.nearest(&ray, sr.length, settle, None) {
-                Some(h) if h.object != target => None,
-                _ => Some(v),
-            };
+            // `source_value` met the source at `sr.length`.
+            return self
+                .source_is_nearest(&ray, target, sr.length, None)
+                .then_some(v);
         }
         match self.nearest(&ray, f64::INFINITY, f64::NEG_INFINITY, None) {
             None => value,

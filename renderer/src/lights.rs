@@ -272,6 +272,24 @@ fn plane_sample(vs: Vec3, org: Vec3, center: Vec3, normal: Vec3) -> Option<Sourc
     })
 }
 
+/// The halves of a cell spanning `radial` (a radius or polar angle range) and `phi`:
+/// across the radial range at `mid()` when `across_radial`, else across the angle at
+/// its middle. Disk and cap cells differ only in where their radial middle lies.
+fn halve(
+    radial: (f64, f64),
+    phi: (f64, f64),
+    across_radial: bool,
+    mid: impl FnOnce() -> f64,
+) -> [((f64, f64), (f64, f64)); 2] {
+    if across_radial {
+        let m = mid();
+        [((radial.0, m), phi), ((m, radial.1), phi)]
+    } else {
+        let m = 0.5 * (phi.0 + phi.1);
+        [(radial, (phi.0, m)), (radial, (m, phi.1))]
+    }
+}
+
 /// An annular sector of a disk source: `rho` in fractions of the radius, `phi` in
 /// radians from the frame's `e1` toward `e2`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -309,32 +327,11 @@ impl DiskCell {
     /// side is longer.
     fn split(&self) -> [DiskCell; 2] {
         let (r0, r1) = self.rho;
-        let (p0, p1) = self.phi;
-        if r1 - r0 >= 0.5 * (r0 + r1) * (p1 - p0) {
-            let rm = (0.5 * (r0 * r0 + r1 * r1)).sqrt();
-            [
-                DiskCell {
-                    rho: (r0, rm),
-                    phi: self.phi,
-                },
-                DiskCell {
-                    rho: (rm, r1),
-                    phi: self.phi,
-                },
-            ]
-        } else {
-            let pm = 0.5 * (p0 + p1);
-            [
-                DiskCell {
-                    rho: self.rho,
-                    phi: (p0, pm),
-                },
-                DiskCell {
-                    rho: self.rho,
-                    phi: (pm, p1),
-                },
-            ]
-        }
+        let across_radius = r1 - r0 >= 0.5 * (r0 + r1) * (self.phi.1 - self.phi.0);
+        halve(self.rho, self.phi, across_radius, || {
+            (0.5 * (r0 * r0 + r1 * r1)).sqrt()
+        })
+        .map(|(rho, phi)| DiskCell { rho, phi })
     }
 
     /// A sample moved from the cell's middle (in `rho^2` and angle, so uniformly by
@@ -447,32 +444,11 @@ impl CapCell {
     /// The two halves of equal solid angle, across the longer side.
     fn split(&self) -> [CapCell; 2] {
         let (t0, t1) = self.theta;
-        let (p0, p1) = self.phi;
-        if t1 - t0 >= (0.5 * (t0 + t1)).sin() * (p1 - p0) {
-            let tm = (0.5 * (t0.cos() + t1.cos())).acos();
-            [
-                CapCell {
-                    theta: (t0, tm),
-                    phi: self.phi,
-                },
-                CapCell {
-                    theta: (tm, t1),
-                    phi: self.phi,
-                },
-            ]
-        } else {
-            let pm = 0.5 * (p0 + p1);
-            [
-                CapCell {
-                    theta: self.theta,
-                    phi: (p0, pm),
-                },
-                CapCell {
-                    theta: self.theta,
-                    phi: (pm, p1),
-                },
-            ]
-        }
+        let across_theta = t1 - t0 >= (0.5 * (t0 + t1)).sin() * (self.phi.1 - self.phi.0);
+        halve(self.theta, self.phi, across_theta, || {
+            (0.5 * (t0.cos() + t1.cos())).acos()
+        })
+        .map(|(theta, phi)| CapCell { theta, phi })
     }
 }
 
