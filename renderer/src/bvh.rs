@@ -1,16 +1,50 @@
 //! A bounding volume hierarchy over the scene's surfaces: binned SAH splits, subtrees
-//! built in parallel with rayon, then collapsed into a 4-wide tree, flattened
+//! built in parallel with rayon, then collapsed into an 8-wide tree, flattened
 //! depth-first for traversal.
 //!
-//! Each node holds its (up to) four children's boxes in `f32`, rounded outward (a box
-//! may only grow), laid out per axis and side as four lanes: a visit tests all four
+//! Each node holds its (up to) eight children's boxes in `f32`, rounded outward (a box
+//! may only grow), laid out per axis and side as eight lanes: a visit tests all eight
 //! children at once in `f32` vector arithmetic whose rounding is bounded and allowed
-//! for, so that a box test can only err towards visiting.
+//! for, so that a box test can only err towards visiting. Eight lanes are one AVX
+//! register (two SSE ones): against four they halve the nodes a ray visits (the
+//! room of `bench/trace_rays.py`: 7.0 to 3.9 a traversal, BENCHMARKS.md).
 
 use crate::math::{Bounds, Vec3, prefetch};
 use crate::ray::Ray;
 
 const BINS: usize = 16;
+
+/// Which vector instructions traversal may use, decided once per process.
+#[cfg(target_arch = "x86_64")]
+mod simd {
+    use std::sync::atomic::{AtomicU8, Ordering};
+
+    /// 0: not yet known, 1: no AVX2, 2: AVX2.
+    static AVX2: AtomicU8 = AtomicU8::new(0);
+
+    /// Whether the processor has AVX2 (and the bit instructions `walk_avx2` uses),
+    /// unless `RADC_NO_AVX2` is set: the portable code then runs, for tests and for
+    /// comparing the two.
+    #[inline(always)]
+    pub fn avx2() -> bool {
+        match AVX2.load(Ordering::Relaxed) {
+            0 => detect(),
+            v => v == 2,
+        }
+    }
+
+    #[cold]
+    fn detect() -> bool {
+        let yes = std::env::var_os("RADC_NO_AVX2").is_none()
+            && is_x86_feature_detected!("avx2")
+            && is_x86_feature_detected!("bmi1")
+            && is_x86_feature_detected!("bmi2")
+            && is_x86_feature_detected!("lzcnt")
+            && is_x86_feature_detected!("popcnt");
+        AVX2.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+        yes
+    }
+}
 
 /// How leaves are made. A small scene's tree stays in cache whatever its size, and
 /// leaves of one primitive save tests; a large scene's extra nodes cost more memory
@@ -52,7 +86,10 @@ impl LeafRule {
     }
 }
 /// Children per node.
-const WIDTH: usize = 4;
+const WIDTH: usize = 8;
+/// A lane's index from any bit position: `WIDTH` is a power of two.
+const LANE: u32 = WIDTH as u32 - 1;
+const _: () = assert!(WIDTH.is_power_of_two() && WIDTH <= 32);
 /// Below this many primitives a subtree is built on the current thread.
 const PARALLEL_THRESHOLD: usize = 4096;
 /// Below this depth SAH chooses splits; deeper, median splits keep the depth logarithmic
@@ -94,7 +131,7 @@ struct Link {
 }
 
 /// An interior node: `planes[axis][side][child]` (side 0 the low corner, 1 the high
-/// one) and the children: 128 bytes, two cache lines. Unused lanes hold an empty box
+/// one) and the children: 256 bytes, four cache lines. Unused lanes hold an empty box
 /// and [`Link::NONE`].
 #[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 #[repr(C, align(64))]
@@ -187,15 +224,15 @@ impl Slabs {
     }
 
     /// The distances at which the ray enters each child's box (0 from inside), and a
-    /// bit per child whose box it enters before `limit`. All four lanes in lockstep,
-    /// so that the compiler keeps them in one vector.
-    #[inline(always)]
+    /// bit per child whose box it enters before `limit`: the reference for the vector
+    /// versions in [`lanes`], which compute the same operations lane by lane.
     #[allow(clippy::needless_range_loop)] // The axis indexes four arrays at once.
+    #[cfg(any(test, not(target_arch = "x86_64")))]
     fn entries(&self, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
         let (mut t0, mut t1) = ([0.0f32; WIDTH], [limit; WIDTH]);
         for a in 0..3 {
-            let side = self.near[a];
-            let (near, far) = (&n.planes[a][side], &n.planes[a][1 - side]);
+            let side = self.near[a] & 1;
+            let (near, far) = (&n.planes[a][side], &n.planes[a][side ^ 1]);
             for c in 0..WIDTH {
                 let tn = (near[c] - self.org_near[a]) * self.inv[a];
                 let tf = (far[c] - self.org_far[a]) * self.inv[a];
@@ -209,6 +246,131 @@ impl Slabs {
             hits |= u32::from(t0[c] <= t1[c] * EXIT_SLACK + EXIT_TINY) << c;
         }
         (t0, hits)
+    }
+}
+
+/// [`Slabs::entries`] in vector registers: the compiler leaves an eight-lane loop
+/// partly scalar, so the lanes are spelled out. `max(tn, t0)` and `min(tf, t1)` are
+/// x86's `maxps`/`minps`, which return their second operand when either is NaN: the
+/// reference's "a NaN leaves the bound as it was".
+mod lanes {
+    use super::{EXIT_SLACK, EXIT_TINY, Node, Slabs, WIDTH};
+
+    /// How a walk tests a node's children.
+    pub(super) trait Lanes {
+        fn entries(s: &Slabs, n: &Node, limit: f32) -> ([f32; WIDTH], u32);
+    }
+
+    /// Code for any processor of the target (on x86_64, SSE2: two halves of four).
+    pub(super) struct Portable;
+
+    #[cfg(not(target_arch = "x86_64"))]
+    impl Lanes for Portable {
+        #[inline(always)]
+        fn entries(s: &Slabs, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
+            s.entries(n, limit)
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    impl Lanes for Portable {
+        #[inline(always)]
+        fn entries(s: &Slabs, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
+            // SAFETY: SSE2 is part of every x86_64 target.
+            unsafe { entries_sse2(s, n, limit) }
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "sse2")]
+    #[inline]
+    fn entries_sse2(s: &Slabs, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
+        use std::arch::x86_64::*;
+        let mut t0 = [_mm_setzero_ps(); 2];
+        let mut t1 = [_mm_set1_ps(limit); 2];
+        for a in 0..3 {
+            let side = s.near[a] & 1;
+            let (near, far) = (&n.planes[a][side], &n.planes[a][side ^ 1]);
+            let (on, of, inv) = (
+                _mm_set1_ps(s.org_near[a]),
+                _mm_set1_ps(s.org_far[a]),
+                _mm_set1_ps(s.inv[a]),
+            );
+            for h in 0..2 {
+                // SAFETY: `near` and `far` hold eight `f32`; each half reads four.
+                let (pn, pf) = unsafe {
+                    (
+                        _mm_loadu_ps(near.as_ptr().add(4 * h)),
+                        _mm_loadu_ps(far.as_ptr().add(4 * h)),
+                    )
+                };
+                let tn = _mm_mul_ps(_mm_sub_ps(pn, on), inv);
+                let tf = _mm_mul_ps(_mm_sub_ps(pf, of), inv);
+                t0[h] = _mm_max_ps(tn, t0[h]);
+                t1[h] = _mm_min_ps(tf, t1[h]);
+            }
+        }
+        let (slack, tiny) = (_mm_set1_ps(EXIT_SLACK), _mm_set1_ps(EXIT_TINY));
+        let mut out = [0.0f32; WIDTH];
+        let mut hits = 0;
+        for h in 0..2 {
+            let exit = _mm_add_ps(_mm_mul_ps(t1[h], slack), tiny);
+            hits |= (_mm_movemask_ps(_mm_cmple_ps(t0[h], exit)) as u32) << (4 * h);
+            // SAFETY: `out` holds eight `f32`; each half writes four.
+            unsafe { _mm_storeu_ps(out.as_mut_ptr().add(4 * h), t0[h]) };
+        }
+        (out, hits)
+    }
+
+    /// Code for processors with AVX2: only [`super::Bvh::walk_avx2`] uses it.
+    #[cfg(target_arch = "x86_64")]
+    pub(super) struct Avx2;
+
+    #[cfg(target_arch = "x86_64")]
+    impl Lanes for Avx2 {
+        #[inline(always)]
+        fn entries(s: &Slabs, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
+            // SAFETY: `Avx2` walks run only where `simd::avx2()` found the features.
+            unsafe { entries_avx(s, n, limit) }
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    #[inline]
+    fn entries_avx(s: &Slabs, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
+        use std::arch::x86_64::*;
+        let (mut t0, mut t1) = (_mm256_setzero_ps(), _mm256_set1_ps(limit));
+        for a in 0..3 {
+            let side = s.near[a] & 1;
+            let (near, far) = (&n.planes[a][side], &n.planes[a][side ^ 1]);
+            // SAFETY: `near` and `far` hold eight `f32`.
+            let (pn, pf) = unsafe {
+                (
+                    _mm256_loadu_ps(near.as_ptr()),
+                    _mm256_loadu_ps(far.as_ptr()),
+                )
+            };
+            let tn = _mm256_mul_ps(
+                _mm256_sub_ps(pn, _mm256_set1_ps(s.org_near[a])),
+                _mm256_set1_ps(s.inv[a]),
+            );
+            let tf = _mm256_mul_ps(
+                _mm256_sub_ps(pf, _mm256_set1_ps(s.org_far[a])),
+                _mm256_set1_ps(s.inv[a]),
+            );
+            t0 = _mm256_max_ps(tn, t0);
+            t1 = _mm256_min_ps(tf, t1);
+        }
+        let exit = _mm256_add_ps(
+            _mm256_mul_ps(t1, _mm256_set1_ps(EXIT_SLACK)),
+            _mm256_set1_ps(EXIT_TINY),
+        );
+        let hits = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, exit)) as u32;
+        let mut out = [0.0f32; WIDTH];
+        // SAFETY: `out` holds eight `f32`.
+        unsafe { _mm256_storeu_ps(out.as_mut_ptr(), t0) };
+        (out, hits)
     }
 }
 
@@ -359,7 +521,31 @@ impl Bvh {
     /// All children's boxes are tested at their parent, and only those the ray enters
     /// are pushed, farther ones first, with their entry distance: a popped node whose
     /// entry lies beyond the (meanwhile shrunk) limit is skipped without touching it.
-    pub fn traverse(&self, ray: &Ray, mut limit: f64, mut visit: impl FnMut(u32) -> f64) {
+    ///
+    /// On a processor with AVX2 the walk (and `visit`, where inlined) runs as code
+    /// compiled for it: eight lanes in one vector instead of two. Both are the same
+    /// IEEE operations in the same order (no fused multiply-adds: Rust never contracts
+    /// them), so they visit the same slots in the same order.
+    #[inline(always)]
+    pub fn traverse(&self, ray: &Ray, limit: f64, visit: impl FnMut(u32) -> f64) {
+        #[cfg(target_arch = "x86_64")]
+        if simd::avx2() {
+            // SAFETY: the processor has the features `walk_avx2` is compiled for.
+            return unsafe { self.walk_avx2(ray, limit, visit) };
+        }
+        self.walk::<lanes::Portable>(ray, limit, visit)
+    }
+
+    /// [`Bvh::walk`] compiled for AVX2 (and the bit instructions that come with it).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
+    fn walk_avx2(&self, ray: &Ray, limit: f64, visit: impl FnMut(u32) -> f64) {
+        self.walk::<lanes::Avx2>(ray, limit, visit)
+    }
+
+    /// [`Bvh::traverse`]'s walk, for whichever instruction set it is inlined into.
+    #[inline(always)]
+    fn walk<L: lanes::Lanes>(&self, ray: &Ray, mut limit: f64, mut visit: impl FnMut(u32) -> f64) {
         if self.order.is_empty() {
             return;
         }
@@ -380,13 +566,13 @@ impl Bvh {
             _ => &self.root,
         };
         loop {
-            let (t0, hits) = s.entries(node, limit32);
+            let (t0, hits) = L::entries(&s, node, limit32);
             // Start fetching every interior child entered at once, so that their
             // misses overlap instead of coming one after another as they are visited
             // (a tree small enough to stay in cache needs no such help).
             let mut bits = if far { hits } else { 0 };
             while bits != 0 {
-                let l = node.child[(bits.trailing_zeros() & 3) as usize];
+                let l = node.child[(bits.trailing_zeros() & LANE) as usize];
                 bits &= bits - 1;
                 if l.count == 0
                     && let Some(n) = self.nodes.get(l.first as usize)
@@ -402,8 +588,8 @@ impl Bvh {
                 }
                 sp += 1;
             };
-            // Lanes are 0..4 (`& 3` spares the bounds checks).
-            let child = |c: u32| (node.child[(c & 3) as usize], t0[(c & 3) as usize]);
+            // Lanes are 0..WIDTH, a power of two (the mask spares the bounds checks).
+            let child = |c: u32| (node.child[(c & LANE) as usize], t0[(c & LANE) as usize]);
             // The children entered: the nearest next, the others onto the stack,
             // farthest first. One or two (the common cases) without sorting.
             let mut next = match hits.count_ones() {
@@ -619,6 +805,35 @@ fn sah_split(
 mod tests {
     use super::*;
 
+    /// The slots `bvh` visits along `ray` before `limit`, with `visit`'s limits, by
+    /// the portable walk and, where the processor has it, the AVX2 one: both must
+    /// visit the same slots in the same order.
+    fn walks(bvh: &Bvh, ray: &Ray, limit: f64, visit: impl Fn(u32) -> f64) -> Vec<u32> {
+        let mut portable = Vec::new();
+        bvh.walk::<lanes::Portable>(ray, limit, |slot| {
+            portable.push(slot);
+            visit(slot)
+        });
+        #[cfg(target_arch = "x86_64")]
+        if simd::avx2() {
+            let mut avx = Vec::new();
+            // SAFETY: the processor has AVX2.
+            unsafe {
+                bvh.walk_avx2(ray, limit, |slot| {
+                    avx.push(slot);
+                    visit(slot)
+                })
+            };
+            assert_eq!(avx, portable, "the walks differ");
+        }
+        portable
+    }
+
+    /// [`walks`] keeping the limit: every slot whose box the ray enters.
+    fn visited(bvh: &Bvh, ray: &Ray, limit: f64) -> Vec<u32> {
+        walks(bvh, ray, limit, |_| f64::INFINITY)
+    }
+
     #[test]
     fn skewed_scenes_stay_shallow() {
         // Boxes at exponentially growing distances: SAH would peel them off one by one.
@@ -632,16 +847,12 @@ mod tests {
             })
             .collect();
         let bvh = Bvh::build(&bounds);
-        let mut seen = 0;
-        bvh.traverse(
+        let seen = visited(
+            &bvh,
             &Ray::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::X),
             f64::INFINITY,
-            |_| {
-                seen += 1;
-                f64::INFINITY
-            },
         );
-        assert_eq!(seen, 2000);
+        assert_eq!(seen.len(), 2000);
     }
 
     #[test]
@@ -657,11 +868,10 @@ mod tests {
             .collect();
         let bvh = Bvh::build(&bounds);
         let ray = Ray::new(Vec3::new(-5.0, 3.0, 0.0), Vec3::X);
-        let mut seen = Vec::new();
-        bvh.traverse(&ray, f64::INFINITY, |slot| {
-            seen.extend(bvh.primitive(slot));
-            f64::INFINITY
-        });
+        let mut seen: Vec<u32> = visited(&bvh, &ray, f64::INFINITY)
+            .into_iter()
+            .filter_map(|slot| bvh.primitive(slot))
+            .collect();
         let expect: Vec<u32> = (0..1000).filter(|i| i % 7 == 3).collect();
         seen.sort();
         seen.retain(|i| expect.contains(i));
@@ -708,11 +918,10 @@ mod tests {
             ),
         ];
         for (org, dir) in rays {
-            let mut seen = Vec::new();
-            bvh.traverse(&Ray::new(org, dir), f64::INFINITY, |slot| {
-                seen.extend(bvh.primitive(slot));
-                f64::INFINITY
-            });
+            let seen: Vec<u32> = visited(&bvh, &Ray::new(org, dir), f64::INFINITY)
+                .into_iter()
+                .filter_map(|slot| bvh.primitive(slot))
+                .collect();
             let mut unique = seen.clone();
             unique.sort();
             unique.dedup();
@@ -774,12 +983,11 @@ mod tests {
                 };
                 let ray = Ray::new(org, dir);
                 let mut seen = vec![false; bounds.len()];
-                bvh.traverse(&ray, limit, |slot| {
+                for slot in visited(&bvh, &ray, limit) {
                     if let Some(i) = bvh.primitive(slot) {
                         seen[i as usize] = true;
                     }
-                    f64::INFINITY
-                });
+                }
                 for (i, b) in bounds.iter().enumerate() {
                     let (mut t0, mut t1) = (0.0f64, limit);
                     let mut met = true;
@@ -800,10 +1008,114 @@ mod tests {
         }
     }
 
-    /// A node is two cache lines: a visit to four children touches no third.
+    /// The vector lanes compute what the scalar reference does, to the bit: random
+    /// boxes and empty lanes (infinite planes), rays with zero direction components
+    /// and origins on box planes (`0 * inf = NaN`), finite and infinite limits.
     #[test]
-    fn nodes_are_two_cache_lines() {
-        assert_eq!(std::mem::size_of::<Node>(), 128);
+    fn lanes_match_the_scalar_reference() {
+        use lanes::Lanes;
+        let mut seed = 11u64;
+        let mut next = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let grid = |x: f64| (x * 8.0).floor() / 4.0 - 1.0;
+        for k in 0..4000 {
+            let mut node = Node::default();
+            for lane in 0..WIDTH {
+                if (k + lane) % 5 == 0 {
+                    continue; // an unused lane
+                }
+                let lo = Vec3::new(grid(next()), grid(next()), grid(next()));
+                let b = Bounds {
+                    min: lo,
+                    max: lo + Vec3::new(next(), next(), next()),
+                };
+                node.set(lane, b, Link { first: 0, count: 1 });
+            }
+            let org = Vec3::new(grid(next()), grid(next()), grid(next()));
+            let mut dir = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+            if k % 3 == 0 {
+                dir[k % 9 / 3] = if k % 2 == 0 { 0.0 } else { -0.0 };
+            }
+            let s = Slabs::new(&Ray::new(org, dir.normalize()));
+            let limit = if k % 4 == 0 {
+                f32::INFINITY
+            } else {
+                next() as f32 * 3.0
+            };
+            let (t0, hits) = s.entries(&node, limit);
+            let bits = |t: [f32; WIDTH]| t.map(f32::to_bits);
+            let (p0, ph) = lanes::Portable::entries(&s, &node, limit);
+            assert_eq!((bits(p0), ph), (bits(t0), hits), "portable, case {k}");
+            #[cfg(target_arch = "x86_64")]
+            if simd::avx2() {
+                let (a0, ah) = lanes::Avx2::entries(&s, &node, limit);
+                assert_eq!((bits(a0), ah), (bits(t0), hits), "AVX2, case {k}");
+            }
+        }
+    }
+
+    /// With a limit that shrinks as hits are found (as `nearest` uses it), both walks
+    /// still agree, and find the nearest box entry a brute-force search finds.
+    #[test]
+    fn shrinking_limits_find_the_nearest() {
+        let mut seed = 5u64;
+        let mut next = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let bounds: Vec<Bounds> = (0..500)
+            .map(|_| {
+                let c = Vec3::new(next(), next(), next()) * 10.0;
+                Bounds {
+                    min: c,
+                    max: c + Vec3::new(next(), next(), next()) * 0.5,
+                }
+            })
+            .collect();
+        let bvh = Bvh::build(&bounds);
+        let entry = |b: &Bounds, ray: &Ray| {
+            let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+            for a in 0..3 {
+                let (p, q) = (
+                    (b.min[a] - ray.org[a]) / ray.dir[a],
+                    (b.max[a] - ray.org[a]) / ray.dir[a],
+                );
+                t0 = t0.max(p.min(q));
+                t1 = t1.min(p.max(q));
+            }
+            (t0 <= t1).then_some(t0)
+        };
+        for _ in 0..300 {
+            let org = Vec3::new(next(), next(), next()) * 12.0 - Vec3::ONE;
+            let dir = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
+            let ray = Ray::new(org, dir);
+            let best = std::cell::Cell::new(f64::INFINITY);
+            let hit = |slot: u32| {
+                let b = &bounds[bvh.primitive(slot).unwrap_or(0) as usize];
+                if let Some(t) = entry(b, &ray) {
+                    best.set(best.get().min(t));
+                }
+                best.get()
+            };
+            let _ = walks(&bvh, &ray, f64::INFINITY, hit);
+            let expect = bounds
+                .iter()
+                .filter_map(|b| entry(b, &ray))
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(best.get(), expect);
+        }
+    }
+
+    /// A node is four whole cache lines.
+    #[test]
+    fn nodes_are_four_cache_lines() {
+        assert_eq!(std::mem::size_of::<Node>(), 256);
         assert_eq!(std::mem::align_of::<Node>(), 64);
     }
 

@@ -27,7 +27,7 @@ use crate::scene::Scene;
 /// The first bytes of every compiled scene file.
 pub const MAGIC: &[u8; 8] = b"RADCSCN\x1a";
 /// The layout of the header and of the scene types. See the module's documentation.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// The radc version stamped into files this build writes.
 pub const RADC_VERSION: &str = env!("CARGO_PKG_VERSION");
 
