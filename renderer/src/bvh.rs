@@ -626,6 +626,15 @@ impl Bvh {
                     Some(order[0])
                 }
             };
+            // Straight down to an interior child: no leaf (no call) on this path, so
+            // the ray's lanes stay in registers.
+            if let Some((link, _)) = next
+                && link.count == 0
+                && let Some(n) = self.nodes.get(link.first as usize)
+            {
+                node = n;
+                continue;
+            }
             node = loop {
                 let (link, entry) = match next.take() {
                     Some(e) => e,
