@@ -223,6 +223,14 @@ impl Slabs {
         }
     }
 
+    /// Node `n`'s planes along axis `a` that the ray meets first (entries) and last
+    /// (exits), for all lanes.
+    #[inline(always)]
+    fn planes<'n>(&self, n: &'n Node, a: usize) -> (&'n [f32; WIDTH], &'n [f32; WIDTH]) {
+        let side = self.near[a] & 1;
+        (&n.planes[a][side], &n.planes[a][side ^ 1])
+    }
+
     /// The distances at which the ray enters each child's box (0 from inside), and a
     /// bit per child whose box it enters before `limit`: the reference for the vector
     /// versions in [`lanes`], which compute the same operations lane by lane.
@@ -231,8 +239,7 @@ impl Slabs {
     fn entries(&self, n: &Node, limit: f32) -> ([f32; WIDTH], u32) {
         let (mut t0, mut t1) = ([0.0f32; WIDTH], [limit; WIDTH]);
         for a in 0..3 {
-            let side = self.near[a] & 1;
-            let (near, far) = (&n.planes[a][side], &n.planes[a][side ^ 1]);
+            let (near, far) = self.planes(n, a);
             for c in 0..WIDTH {
                 let tn = (near[c] - self.org_near[a]) * self.inv[a];
                 let tf = (far[c] - self.org_far[a]) * self.inv[a];
@@ -289,8 +296,7 @@ mod lanes {
         let mut t0 = [_mm_setzero_ps(); 2];
         let mut t1 = [_mm_set1_ps(limit); 2];
         for a in 0..3 {
-            let side = s.near[a] & 1;
-            let (near, far) = (&n.planes[a][side], &n.planes[a][side ^ 1]);
+            let (near, far) = s.planes(n, a);
             let (on, of, inv) = (
                 _mm_set1_ps(s.org_near[a]),
                 _mm_set1_ps(s.org_far[a]),
@@ -342,8 +348,7 @@ mod lanes {
         use std::arch::x86_64::*;
         let (mut t0, mut t1) = (_mm256_setzero_ps(), _mm256_set1_ps(limit));
         for a in 0..3 {
-            let side = s.near[a] & 1;
-            let (near, far) = (&n.planes[a][side], &n.planes[a][side ^ 1]);
+            let (near, far) = s.planes(n, a);
             // SAFETY: `near` and `far` hold eight `f32`.
             let (pn, pf) = unsafe {
                 (
