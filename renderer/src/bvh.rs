@@ -261,7 +261,9 @@ impl Slabs {
 /// x86's `maxps`/`minps`, which return their second operand when either is NaN: the
 /// reference's "a NaN leaves the bound as it was".
 mod lanes {
-    use super::{EXIT_SLACK, EXIT_TINY, Node, Slabs, WIDTH};
+    #[cfg(target_arch = "x86_64")]
+    use super::{EXIT_SLACK, EXIT_TINY};
+    use super::{Node, Slabs, WIDTH};
 
     /// How a walk tests a node's children.
     pub(super) trait Lanes {
