@@ -1028,6 +1028,15 @@ mod tests {
         }
     }
 
+    /// The radiance of rays from `org` toward every point of [`floor_grid`]`(n)`.
+    fn grid_radiance(t: &Tracer<'_>, n: usize, org: Vec3) -> Vec<Color> {
+        let mut colors = Vec::new();
+        floor_grid(n, |aim| {
+            colors.push(t.radiance(org, (aim - org).normalize()).color);
+        });
+        colors
+    }
+
     /// Renders with a fast path on (`set(scene, true)`) and off, and asserts the
     /// colours are the same bit for bit, with more than `min_lit` of them lit.
     fn assert_same_both_ways(
@@ -1098,12 +1107,7 @@ mod tests {
         assert!(scene.opaque_to_object_shadows);
         let set = |s: &mut Scene, on: bool| s.opaque_to_object_shadows = on;
         assert_same_both_ways(&mut scene, set, &Options::default(), 100, |t| {
-            let mut colors = Vec::new();
-            floor_grid(40, |aim| {
-                let org = Vec3::new(0.05, -0.02, 1.3);
-                colors.push(t.radiance(org, (aim - org).normalize()).color);
-            });
-            colors
+            grid_radiance(t, 40, Vec3::new(0.05, -0.02, 1.3))
         });
     }
 
@@ -1237,12 +1241,7 @@ mod tests {
         let set = |s: &mut Scene, on: bool| s.opaque_to_shadows = on;
         for options in variants {
             assert_same_both_ways(&mut scene, set, &options, 100, |t| {
-                let mut colors = Vec::new();
-                floor_grid(30, |aim| {
-                    let org = Vec3::new(0.05, -0.02, 0.5);
-                    colors.push(t.radiance(org, (aim - org).normalize()).color);
-                });
-                colors
+                grid_radiance(t, 30, Vec3::new(0.05, -0.02, 0.5))
             });
         }
     }
