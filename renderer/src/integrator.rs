@@ -1077,31 +1077,14 @@ mod tests {
         let grey = b.plastic("grey", 0.5);
         let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
         b.square("floor", grey, 0.0, true);
-        let sphere = |b: &mut IrBuilder, name: &str, m: u32, c: [f64; 3], r: f64| {
-            b.add(
-                "sphere",
-                name,
-                Some(m),
-                PrimKind::Sphere {
-                    center: c,
-                    radius: r,
-                },
-            );
-        };
-        sphere(&mut b, "lamp_a", lamp, [0.0, 0.0, 1.5], 0.1);
-        sphere(&mut b, "twin_of_a", grey, [0.0, 0.0, 1.5], 0.1);
-        sphere(&mut b, "lamp_b", lamp, [0.6, 0.0, 1.5], 0.1);
-        sphere(
-            &mut b,
-            "touching_b",
-            grey,
-            [0.6, 0.0, 1.4 - 0.05 - 3e-7],
-            0.05,
-        );
-        sphere(&mut b, "lamp_c", lamp, [-0.6, 0.3, 1.2], 0.1);
-        sphere(&mut b, "lamp_d", lamp, [-0.6, 0.3, 1.6], 0.1);
-        sphere(&mut b, "behind_d", grey, [-0.6, 0.3, 1.7 + 0.02], 0.02);
-        sphere(&mut b, "ball", grey, [0.3, -0.4, 0.5], 0.2);
+        b.sphere("lamp_a", lamp, [0.0, 0.0, 1.5], 0.1);
+        b.sphere("twin_of_a", grey, [0.0, 0.0, 1.5], 0.1);
+        b.sphere("lamp_b", lamp, [0.6, 0.0, 1.5], 0.1);
+        b.sphere("touching_b", grey, [0.6, 0.0, 1.4 - 0.05 - 3e-7], 0.05);
+        b.sphere("lamp_c", lamp, [-0.6, 0.3, 1.2], 0.1);
+        b.sphere("lamp_d", lamp, [-0.6, 0.3, 1.6], 0.1);
+        b.sphere("behind_d", grey, [-0.6, 0.3, 1.7 + 0.02], 0.02);
+        b.sphere("ball", grey, [0.3, -0.4, 0.5], 0.2);
         b.square("shelf", grey, 1.4 - 5e-7, false);
         let mut scene = Scene::compile(&b.scene).expect("compiles");
         assert!(scene.opaque_to_object_shadows);
@@ -1140,22 +1123,11 @@ mod tests {
             },
         );
         b.square("floor", grey, 0.0, true);
-        let sphere = |b: &mut IrBuilder, name: &str, m: u32, c: [f64; 3], r: f64| {
-            b.add(
-                "sphere",
-                name,
-                Some(m),
-                PrimKind::Sphere {
-                    center: c,
-                    radius: r,
-                },
-            );
-        };
-        sphere(&mut b, "lamp", lamp, [0.0, 0.0, 1.5], 0.1);
-        sphere(&mut b, "around", lamp, [-0.5, -0.5, 0.15], 0.3);
-        sphere(&mut b, "glow", glow, [0.5, 0.5, 0.8], 0.1);
-        sphere(&mut b, "spot", spot, [0.4, -0.4, 1.2], 0.05);
-        sphere(&mut b, "ball", grey, [0.3, -0.1, 0.4], 0.15);
+        b.sphere("lamp", lamp, [0.0, 0.0, 1.5], 0.1);
+        b.sphere("around", lamp, [-0.5, -0.5, 0.15], 0.3);
+        b.sphere("glow", glow, [0.5, 0.5, 0.8], 0.1);
+        b.sphere("spot", spot, [0.4, -0.4, 1.2], 0.05);
+        b.sphere("ball", grey, [0.3, -0.1, 0.4], 0.15);
         let mut scene = Scene::compile(&b.scene).expect("compiles");
         assert!(scene.opaque_to_object_shadows);
         let variants = [

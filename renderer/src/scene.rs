@@ -715,6 +715,15 @@ pub(crate) mod tests {
                 PrimKind::Polygon { vertices },
             )
         }
+
+        pub fn sphere(&mut self, name: &str, modifier: u32, center: [f64; 3], radius: f64) -> u32 {
+            self.add(
+                "sphere",
+                name,
+                Some(modifier),
+                PrimKind::Sphere { center, radius },
+            )
+        }
     }
 
     #[test]
