@@ -475,8 +475,8 @@ impl Bvh {
         }
     }
 
-    /// Flattens `b` depth-first, each binary node together with up to three of its
-    /// descendants (the largest boxes opened first) into one node of four children.
+    /// Flattens `b` depth-first, each binary node's subtree opened (the largest boxes
+    /// first) into one node of up to `WIDTH` children.
     fn flatten(&mut self, b: &Build) -> Link {
         let (l, r) = match b {
             Build::Leaf(_, idx) => {
@@ -612,7 +612,7 @@ impl Bvh {
                     Some(near)
                 }
                 _ => {
-                    // Insertion sort of three or four.
+                    // Insertion sort of three to eight.
                     let mut order = [(Link::default(), 0f32); WIDTH];
                     let mut n = 0;
                     let mut bits = hits;
