@@ -424,6 +424,26 @@ impl Bvh {
         bvh
     }
 
+    /// The box around everything in the tree (its corners rounded out to `f32`), or
+    /// `None` for an empty tree.
+    pub fn extent(&self) -> Option<Bounds> {
+        if self.order.is_empty() {
+            return None;
+        }
+        let p = &self.root.planes;
+        let corner = |side: usize| {
+            Vec3::new(
+                f64::from(p[0][side][0]),
+                f64::from(p[1][side][0]),
+                f64::from(p[2][side][0]),
+            )
+        };
+        Some(Bounds {
+            min: corner(0),
+            max: corner(1),
+        })
+    }
+
     /// Number of leaf slots (primitives in the tree).
     pub fn len(&self) -> usize {
         self.order.len()

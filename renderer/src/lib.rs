@@ -11,6 +11,7 @@ pub mod math;
 pub mod picture;
 pub mod random;
 pub mod ray;
+pub mod ray_order;
 pub mod scene;
 pub mod scene_file;
 pub mod shapes;

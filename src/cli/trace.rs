@@ -14,7 +14,7 @@ use std::process::ExitCode;
 
 use radc_lang::Severity;
 use radc_renderer::math::{Vec3, normalize};
-use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
+use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture, ray_order};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
@@ -25,7 +25,11 @@ const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-
 [-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
 
 /// Rays read, then evaluated together (in parallel), between writes.
-const BATCH: usize = 4096;
+const BATCH: usize = 1 << 18;
+
+/// Batches of fewer rays are traced in input order.
+const SORT_MIN: usize = 64;
+const _: () = assert!(BATCH <= ray_order::MAX_RAYS);
 
 /// Rays one parallel task evaluates and formats.
 const CHUNK: usize = 128;
@@ -355,15 +359,24 @@ fn run_parsed(args: &[String]) -> ExitCode {
         (x, y) if x > 1 => Some(u64::from(x) * u64::from(y)),
         (_, y) => Some(u64::from(y)),
     };
+    // rtrace flushes its output every -x rays when -y is 0 or -x is 1: how a program
+    // that sends rays one at a time gets each answer back before sending the next.
+    let flush_every = (a.x_res > 0 && (a.y_res == 0 || a.x_res == 1)).then_some(a.x_res as usize);
+    let mut until_flush = flush_every;
+    if flush_every.is_some() {
+        let _ = out.flush();
+    }
     let tracer = Tracer::new(&scene, a.options.clone());
     let stdin = std::io::stdin();
     let mut input = RayReader::new(BufReader::with_capacity(1 << 16, stdin.lock()), a.input);
     let mut rays = Vec::with_capacity(BATCH);
-    let mut chunks: Vec<Chunk> = Vec::new();
+    let mut work = Work::default();
     let mut last = (Vec3::ZERO, Vec3::ZERO);
     let mut index = 0u64;
     loop {
-        let want = remaining.map_or(BATCH, |n| (n as usize).min(BATCH));
+        let want = remaining
+            .map_or(BATCH, |n| (n as usize).min(BATCH))
+            .min(until_flush.unwrap_or(BATCH));
         if want == 0 {
             break;
         }
@@ -372,42 +385,27 @@ fn run_parsed(args: &[String]) -> ExitCode {
             *n -= (rays.len() + usize::from(flush)) as u64;
             done |= *n == 0;
         }
-        // Chunks of rays evaluated and formatted in parallel, each into its own
-        // buffer, written in input order. Each ray's random choices derive from its
-        // index in the input, so the output is the same for any thread count.
-        let used = rays.len().div_ceil(CHUNK);
-        // At least one: the flush record is formatted in the first.
-        if chunks.len() < used.max(1) {
-            chunks.resize_with(used.max(1), Chunk::default);
+        if let Some(l) = work.run(&rays, index, &tracer, &scene, &a, &mut out) {
+            last = l;
         }
-        rays.par_chunks(CHUNK)
-            .zip(chunks.par_iter_mut())
-            .enumerate()
-            .for_each(|(c, (rays, chunk))| {
-                chunk.text.clear();
-                let first = index + (c * CHUNK) as u64;
-                for (k, &(org, dir)) in rays.iter().enumerate() {
-                    let r = evaluate(&tracer, org, dir, &a, first + k as u64);
-                    write_ray(&mut chunk.text, &r, &scene, &a);
-                    chunk.last = (r.org, r.dir);
-                }
-            });
         index += (rays.len() + usize::from(flush)) as u64;
-        for chunk in &chunks[..used] {
-            let _ = out.write_all(chunk.text.bytes());
-        }
-        if let Some(chunk) = chunks[..used].last() {
-            last = chunk.last;
+        if let Some(n) = until_flush.as_mut() {
+            *n -= rays.len();
+            if *n == 0 {
+                let _ = out.flush();
+                until_flush = flush_every;
+            }
         }
         if flush {
             // A zero direction: an empty record, then flush (rtrace's `bogusray`).
             let mut bogus = RayState::primary(last.0, last.1);
             bogus.normal = -last.1;
-            let text = &mut chunks[0].text;
+            let text = &mut work.chunks[0].text;
             text.clear();
             write_ray(text, &bogus, &scene, &a);
             let _ = out.write_all(text.bytes());
             let _ = out.flush();
+            until_flush = flush_every;
         }
         if done {
             break;
@@ -419,11 +417,101 @@ fn run_parsed(args: &[String]) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+/// What evaluating a batch of rays uses, kept from batch to batch.
+#[derive(Default)]
+struct Work {
+    /// One per parallel task; at least one after a batch (the flush record's).
+    chunks: Vec<Chunk>,
+    keys: Vec<u64>,
+    /// The batch's indices in the order traced.
+    order: Vec<u32>,
+    /// The rays in that order, each with its index.
+    queue: Vec<(u32, (Vec3, Vec3))>,
+    /// Per ray in input order: its chunk and the range of its record there.
+    places: Vec<(u32, u32, u32)>,
+}
+
+impl Work {
+    /// Evaluates `rays` (numbered from `index` in the input) in chunks in parallel,
+    /// each chunk formatting into its own buffer, and writes the records in input
+    /// order. Each ray's random choices derive from its index in the input, so the
+    /// output is the same for any thread count and any order of evaluation. Returns
+    /// the last ray's origin and direction (normalized), if any.
+    fn run(
+        &mut self,
+        rays: &[(Vec3, Vec3)],
+        index: u64,
+        tracer: &Tracer<'_>,
+        scene: &Scene,
+        a: &Args,
+        out: &mut impl Write,
+    ) -> Option<(Vec3, Vec3)> {
+        let used = rays.len().div_ceil(CHUNK);
+        if self.chunks.len() < used.max(1) {
+            self.chunks.resize_with(used.max(1), Chunk::default);
+        }
+        let extent = scene.bvh.extent().filter(|_| rays.len() >= SORT_MIN);
+        let order = &mut self.order;
+        match extent {
+            Some(extent) => ray_order::coherent_order(rays, extent, &mut self.keys, order),
+            None => {
+                order.clear();
+                order.extend(0..rays.len() as u32);
+            }
+        }
+        // The rays in the order traced: one pass whose cache misses overlap, rather
+        // than one miss per ray in the middle of tracing it.
+        self.queue.clear();
+        self.queue
+            .extend(order.iter().map(|&i| (i, rays[i as usize])));
+        self.queue
+            .par_chunks(CHUNK)
+            .zip(self.chunks.par_iter_mut())
+            .for_each(|(queue, chunk)| {
+                chunk.text.clear();
+                chunk.ends.clear();
+                chunk.last = None;
+                for &(i, (org, dir)) in queue {
+                    let r = evaluate(tracer, org, dir, a, index + u64::from(i));
+                    write_ray(&mut chunk.text, &r, scene, a);
+                    chunk.ends.push(chunk.text.len as u32);
+                    if i as usize + 1 == rays.len() {
+                        chunk.last = Some((r.org, r.dir));
+                    }
+                }
+            });
+        let chunks = &self.chunks[..used];
+        if extent.is_some() {
+            // Each ray's record, found through where its chunk put it, in input order.
+            self.places.resize(rays.len(), (0, 0, 0));
+            for (c, chunk) in chunks.iter().enumerate() {
+                let mut start = 0;
+                for (k, &end) in chunk.ends.iter().enumerate() {
+                    self.places[order[c * CHUNK + k] as usize] = (c as u32, start, end);
+                    start = end;
+                }
+            }
+            for &(c, start, end) in &self.places[..rays.len()] {
+                let text = chunks[c as usize].text.bytes();
+                let _ = out.write_all(&text[start as usize..end as usize]);
+            }
+        } else {
+            for chunk in chunks {
+                let _ = out.write_all(chunk.text.bytes());
+            }
+        }
+        chunks.iter().find_map(|c| c.last)
+    }
+}
+
 /// Rays evaluated and formatted by one task, and the last one's origin and direction.
 #[derive(Default)]
 struct Chunk {
     text: OutBuf,
-    last: (Vec3, Vec3),
+    /// Where each ray's record ends in `text`.
+    ends: Vec<u32>,
+    /// The origin and direction of the batch's last ray, if this chunk traced it.
+    last: Option<(Vec3, Vec3)>,
 }
 
 /// Output bytes: a zero-filled buffer and how much of it is used, so a record is
