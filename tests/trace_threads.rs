@@ -84,9 +84,19 @@ fn scattered_rays(n: usize) -> String {
 fn tracing_a_batch_in_space_order_changes_no_output() {
     // A batch is traced sorted along a curve through the scene; with -x 1 every ray
     // is flushed on its own, so each is its own batch and goes as given.
+    // Scenes bigger than a core's cache are the ones sorted: 16,000 balls (about
+    // 2 MB of nodes and spheres) under the lamp.
+    let mut scene = SCENE.to_string();
+    for k in 0..16_000 {
+        let (x, y) = (
+            (k % 128) as f64 * 0.0625 - 4.0,
+            (k / 128) as f64 * 0.0625 - 4.0,
+        );
+        scene.push_str(&format!("grey sphere b{k} 0 0 4 {x} {y} -0.9 0.02\n"));
+    }
     let dir = tempfile::tempdir().expect("temp dir");
-    std::fs::write(dir.path().join("scene.rad"), SCENE).expect("write scene");
-    let rays = scattered_rays(3000);
+    std::fs::write(dir.path().join("scene.rad"), scene).expect("write scene");
+    let rays = scattered_rays(1500);
     for options in [
         &["-ov"][..],
         &["-ab", "1", "-ad", "16", "-ovdplLn"],

@@ -444,6 +444,11 @@ impl Bvh {
         })
     }
 
+    /// Bytes a traversal reads from: the nodes and the slot order.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.nodes.as_slice()) + std::mem::size_of_val(self.order.as_slice())
+    }
+
     /// Number of leaf slots (primitives in the tree).
     pub fn len(&self) -> usize {
         self.order.len()

@@ -15,43 +15,94 @@ use crate::math::{Bounds, Vec3};
 
 /// Bits of a ray's index in its sort key: a batch holds at most `1 << INDEX_BITS` rays.
 const INDEX_BITS: u32 = 20;
-/// Bits per axis of the cell a ray's key names: `3 * 14 + 20 = 62` bits in all.
-const CELL_BITS: u32 = 14;
+/// Bits per axis of the cell a ray's key names: 1,024 cells along the box's longest
+/// side, where a batch puts a few hundred rays per cell row.
+const CELL_BITS: u32 = 10;
+/// Bits of the cell code sorted per radix pass: three passes for `3 * CELL_BITS`.
+const RADIX_BITS: u32 = 10;
+const PASSES: u32 = 3 * CELL_BITS / RADIX_BITS;
 
-/// Most rays [`coherent_order`] orders at once.
+/// Most rays [`RayOrder::sort`] orders at once.
 pub const MAX_RAYS: usize = 1 << INDEX_BITS;
 
-/// The indices of `rays` (origin, direction; at most [`MAX_RAYS`]) into `order`, in
-/// the order to trace them: by the Z-order of the point halfway along each ray's
-/// stretch inside `extent` (the scene's box), where its nearest hit most likely
-/// lies. A ray that misses the box is placed by its origin, clamped to the box.
-/// Rays beyond `MAX_RAYS` keep their input order after the rest.
-pub fn coherent_order(
-    rays: &[(Vec3, Vec3)],
-    extent: Bounds,
-    keys: &mut Vec<u64>,
-    order: &mut Vec<u32>,
-) {
-    let n = rays.len().min(MAX_RAYS);
-    let size = (extent.max - extent.min).max_element();
-    // Cubic cells: a flat scene's thin axis gets few cells, not as many as its long ones.
-    let scale = if size > 0.0 && size.is_finite() {
-        f64::from((1u32 << CELL_BITS) - 1) / size
-    } else {
-        0.0
-    };
-    keys.clear();
-    keys.extend(rays[..n].iter().enumerate().map(|(i, &(org, dir))| {
-        let p = midpoint(org, dir, extent);
-        // `as` saturates, and takes NaN to 0: any ray gets a cell.
-        let cell = |a: usize| ((p[a] - extent.min[a]) * scale) as u64;
-        let z = spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2;
-        z << INDEX_BITS | i as u64
-    }));
-    keys.sort_unstable();
-    order.clear();
-    order.extend(keys.iter().map(|k| (k & (MAX_RAYS as u64 - 1)) as u32));
-    order.extend(n as u32..rays.len() as u32);
+/// An order of a batch's rays and the scratch space that computes it, kept from
+/// batch to batch.
+#[derive(Default)]
+pub struct RayOrder {
+    keys: Vec<u64>,
+    spare: Vec<u64>,
+    order: Vec<u32>,
+}
+
+impl RayOrder {
+    /// The indices of `rays` (origin, direction) in the order to trace them: by the
+    /// Z-order of the point halfway along each ray's stretch inside `extent` (the
+    /// scene's box), where its nearest hit most likely lies; rays in the same cell
+    /// keep their input order. A ray that misses the box is placed by its origin,
+    /// clamped to the box. Rays beyond [`MAX_RAYS`] follow the rest, as given.
+    pub fn sort(&mut self, rays: &[(Vec3, Vec3)], extent: Bounds) -> &[u32] {
+        let n = rays.len().min(MAX_RAYS);
+        let size = (extent.max - extent.min).max_element();
+        // Cubic cells: a flat scene's thin axis gets few cells, not as many as its
+        // long ones.
+        let scale = if size > 0.0 && size.is_finite() {
+            f64::from((1u32 << CELL_BITS) - 1) / size
+        } else {
+            0.0
+        };
+        self.keys.clear();
+        self.keys
+            .extend(rays[..n].iter().enumerate().map(|(i, &(org, dir))| {
+                let p = midpoint(org, dir, extent);
+                // `as` saturates, and takes NaN to 0: any ray gets a cell.
+                let cell = |a: usize| ((p[a] - extent.min[a]) * scale) as u64;
+                let z = spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2;
+                z << INDEX_BITS | i as u64
+            }));
+        radix_sort(&mut self.keys, &mut self.spare);
+        self.order.clear();
+        let index = MAX_RAYS as u64 - 1;
+        self.order
+            .extend(self.keys.iter().map(|k| (k & index) as u32));
+        self.order.extend(n as u32..rays.len() as u32);
+        &self.order
+    }
+
+    /// `0..n`: the input order.
+    pub fn as_given(&mut self, n: usize) -> &[u32] {
+        self.order.clear();
+        self.order.extend(0..n as u32);
+        &self.order
+    }
+}
+
+/// Sorts `keys` by their cell codes (the bits above `INDEX_BITS`), stably: a radix
+/// sort, a few instructions per key and pass where a comparison sort of a batch
+/// takes over a hundred.
+fn radix_sort(keys: &mut Vec<u64>, spare: &mut Vec<u64>) {
+    const DIGITS: usize = 1 << RADIX_BITS;
+    spare.clear();
+    spare.resize(keys.len(), 0);
+    for pass in 0..PASSES {
+        let shift = INDEX_BITS + pass * RADIX_BITS;
+        let digit = |k: u64| (k >> shift) as usize % DIGITS;
+        let mut start = [0usize; DIGITS];
+        for &k in keys.iter() {
+            start[digit(k)] += 1;
+        }
+        let mut sum = 0;
+        for s in start.iter_mut() {
+            (*s, sum) = (sum, sum + *s);
+        }
+        for &k in keys.iter() {
+            let d = digit(k);
+            if let Some(slot) = spare.get_mut(start[d]) {
+                *slot = k;
+            }
+            start[d] += 1;
+        }
+        std::mem::swap(keys, spare);
+    }
 }
 
 /// The point halfway along the part of the ray inside `b`, or the origin clamped to
@@ -88,9 +139,7 @@ mod tests {
     use crate::random::uniform;
 
     fn order_of(rays: &[(Vec3, Vec3)], extent: Bounds) -> Vec<u32> {
-        let (mut keys, mut order) = (Vec::new(), Vec::new());
-        coherent_order(rays, extent, &mut keys, &mut order);
-        order
+        RayOrder::default().sort(rays, extent).to_vec()
     }
 
     fn unit_box() -> Bounds {
@@ -103,7 +152,21 @@ mod tests {
     #[test]
     fn spread_puts_two_zeros_after_each_bit() {
         assert_eq!(spread(0b1011), 0b001_000_001_001);
-        assert_eq!(spread(u64::MAX), 0x1249_2492_4924_9249 & ((1 << 40) - 1));
+        assert_eq!(spread(u64::MAX), 0x1249_2492_4924_9249 & ((1 << 30) - 1));
+    }
+
+    #[test]
+    fn radix_sort_sorts_by_cell_and_keeps_the_input_order_within_one() {
+        let mut keys: Vec<u64> = (0..5000u64)
+            .map(|i| ((uniform(5, i) * 4000.0) as u64) << INDEX_BITS | i)
+            .collect();
+        let mut want = keys.clone();
+        want.sort_unstable();
+        radix_sort(&mut keys, &mut Vec::new());
+        assert_eq!(keys, want);
+        let mut top = vec![u64::MAX, 0, 1 << 62];
+        radix_sort(&mut top, &mut Vec::new());
+        assert_eq!(top, [0, 1 << 62, u64::MAX]);
     }
 
     #[test]

@@ -216,6 +216,13 @@ impl Scene {
         self.materials.get(id.0 as usize)
     }
 
+    /// Bytes that finding a ray's nearest hit reads from: BVH nodes, slots, packed
+    /// shapes and hit records. Above the size of a core's cache, the order rays are
+    /// traced in decides how many of those reads go to memory.
+    pub fn traversal_bytes(&self) -> usize {
+        self.bvh.bytes() + self.surfaces.bytes() + std::mem::size_of_val(self.hits.as_slice())
+    }
+
     pub fn object(&self, i: u32) -> Option<&Object> {
         self.objects.get(i as usize)
     }

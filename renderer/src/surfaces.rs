@@ -67,6 +67,14 @@ impl Surfaces {
         (OBJECT, 0)
     }
 
+    /// Bytes the intersection tests read from: the slots and the packed shapes.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.slots.as_slice())
+            + std::mem::size_of_val(self.triangles.as_slice())
+            + std::mem::size_of_val(self.quads.as_slice())
+            + std::mem::size_of_val(self.spheres.as_slice())
+    }
+
     /// The object in `slot`.
     #[inline(always)]
     pub fn object_at(&self, slot: u32) -> Option<u32> {

@@ -14,7 +14,8 @@ use std::process::ExitCode;
 
 use radc_lang::Severity;
 use radc_renderer::math::{Vec3, normalize};
-use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture, ray_order};
+use radc_renderer::ray_order::{self, RayOrder};
+use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
@@ -29,6 +30,10 @@ const BATCH: usize = 1 << 18;
 
 /// Batches of fewer rays are traced in input order.
 const SORT_MIN: usize = 64;
+/// Scenes whose nodes and surfaces take more bytes than this (a core's L2 cache here)
+/// have their batches traced in space order; smaller ones stay in cache whatever the
+/// order, and sorting would only cost time (about 2% on `bench/`'s room).
+const SORT_ABOVE_BYTES: usize = 1 << 20;
 const _: () = assert!(BATCH <= ray_order::MAX_RAYS);
 
 /// Rays one parallel task evaluates and formats.
@@ -422,9 +427,8 @@ fn run_parsed(args: &[String]) -> ExitCode {
 struct Work {
     /// One per parallel task; at least one after a batch (the flush record's).
     chunks: Vec<Chunk>,
-    keys: Vec<u64>,
     /// The batch's indices in the order traced.
-    order: Vec<u32>,
+    order: RayOrder,
     /// The rays in that order, each with its index.
     queue: Vec<(u32, (Vec3, Vec3))>,
     /// Per ray in input order: its chunk and the range of its record there.
@@ -450,36 +454,37 @@ impl Work {
         if self.chunks.len() < used.max(1) {
             self.chunks.resize_with(used.max(1), Chunk::default);
         }
-        let extent = scene.bvh.extent().filter(|_| rays.len() >= SORT_MIN);
-        let order = &mut self.order;
-        match extent {
-            Some(extent) => ray_order::coherent_order(rays, extent, &mut self.keys, order),
-            None => {
-                order.clear();
-                order.extend(0..rays.len() as u32);
+        let sort = rays.len() >= SORT_MIN && scene.traversal_bytes() > SORT_ABOVE_BYTES;
+        let extent = scene.bvh.extent().filter(|_| sort);
+        let last = rays.len().wrapping_sub(1) as u32;
+        let order = match extent {
+            Some(extent) => {
+                let order = self.order.sort(rays, extent);
+                // The rays in the order traced: one pass whose cache misses overlap,
+                // rather than one miss per ray in the middle of tracing it.
+                self.queue.clear();
+                self.queue
+                    .extend(order.iter().map(|&i| (i, rays[i as usize])));
+                self.queue
+                    .par_chunks(CHUNK)
+                    .zip(self.chunks.par_iter_mut())
+                    .for_each(|(queue, chunk)| {
+                        chunk.trace(queue.iter().copied(), last, index, tracer, scene, a);
+                    });
+                order
             }
-        }
-        // The rays in the order traced: one pass whose cache misses overlap, rather
-        // than one miss per ray in the middle of tracing it.
-        self.queue.clear();
-        self.queue
-            .extend(order.iter().map(|&i| (i, rays[i as usize])));
-        self.queue
-            .par_chunks(CHUNK)
-            .zip(self.chunks.par_iter_mut())
-            .for_each(|(queue, chunk)| {
-                chunk.text.clear();
-                chunk.ends.clear();
-                chunk.last = None;
-                for &(i, (org, dir)) in queue {
-                    let r = evaluate(tracer, org, dir, a, index + u64::from(i));
-                    write_ray(&mut chunk.text, &r, scene, a);
-                    chunk.ends.push(chunk.text.len as u32);
-                    if i as usize + 1 == rays.len() {
-                        chunk.last = Some((r.org, r.dir));
-                    }
-                }
-            });
+            None => {
+                rays.par_chunks(CHUNK)
+                    .zip(self.chunks.par_iter_mut())
+                    .enumerate()
+                    .for_each(|(c, (rays, chunk))| {
+                        let first = (c * CHUNK) as u32;
+                        let rays = (first..).zip(rays.iter().copied());
+                        chunk.trace(rays, last, index, tracer, scene, a);
+                    });
+                &[]
+            }
+        };
         let chunks = &self.chunks[..used];
         if extent.is_some() {
             // Each ray's record, found through where its chunk put it, in input order.
@@ -512,6 +517,33 @@ struct Chunk {
     ends: Vec<u32>,
     /// The origin and direction of the batch's last ray, if this chunk traced it.
     last: Option<(Vec3, Vec3)>,
+}
+
+impl Chunk {
+    /// Evaluates and formats `rays` (each with its index in the batch, which begins
+    /// at `index` in the input), noting the origin and direction of the batch's ray
+    /// `last` if it is among them.
+    fn trace(
+        &mut self,
+        rays: impl Iterator<Item = (u32, (Vec3, Vec3))>,
+        last: u32,
+        index: u64,
+        tracer: &Tracer<'_>,
+        scene: &Scene,
+        a: &Args,
+    ) {
+        self.text.clear();
+        self.ends.clear();
+        self.last = None;
+        for (i, (org, dir)) in rays {
+            let r = evaluate(tracer, org, dir, a, index + u64::from(i));
+            write_ray(&mut self.text, &r, scene, a);
+            self.ends.push(self.text.len as u32);
+            if i == last {
+                self.last = Some((r.org, r.dir));
+            }
+        }
+    }
 }
 
 /// Output bytes: a zero-filled buffer and how much of it is used, so a record is
