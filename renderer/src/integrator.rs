@@ -132,6 +132,19 @@ thread_local! {
     /// [`Tracer::direct`]'s source samples, kept between calls.
     static SAMPLE_BUFFER: std::cell::Cell<Vec<SourceSample>> =
         const { std::cell::Cell::new(Vec::new()) };
+    /// [`Tracer::direct`]'s shadow rays to test, kept between calls.
+    static SHOT_BUFFER: std::cell::Cell<Vec<Shot>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
+/// A shadow ray [`Tracer::direct`] will test: toward source `source` along `dir`,
+/// bringing its radiance times `c`; `hit`, where it meets the source's surface, if
+/// that is tested first.
+#[derive(Clone, Copy)]
+struct Shot {
+    source: usize,
+    dir: Vec3,
+    c: Color,
+    hit: Option<Option<ShapeHit>>,
 }
 
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
@@ -742,11 +755,19 @@ impl<'a> Tracer<'a> {
 
     /// Adds the direct contribution of every source to `r` (`direct()`), `coef` giving
     /// the material's coefficient for a source sample direction and solid angle.
+    ///
+    /// In three passes over the samples, each adding what it finds in the same order:
+    /// the coefficients; where a shadow ray will be tested against its source surface
+    /// first, that hit; then the shadow rays. A surface hit is a chain of divisions
+    /// and a square root, each waiting for the one before; side by side, the chains of
+    /// different samples overlap, where between shadow walks each would stall alone.
     pub fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
-        // The thread's sample buffer, taken for this call so that no call allocates
-        // once it has grown (a nested call, through a shadow ray, finds it empty and
-        // uses a fresh one).
+        // The thread's buffers, taken for this call so that no call allocates once
+        // they have grown (a nested call, through a shadow ray, finds them empty and
+        // uses fresh ones).
         let mut samples = SAMPLE_BUFFER.take();
+        let mut shots = SHOT_BUFFER.take();
+        shots.clear();
         for (si, s) in self.scene.sources.iter().enumerate() {
             samples.clear();
             let jitter = (self.options.source_jitter > 0.0).then(|| {
@@ -768,23 +789,57 @@ impl<'a> Tracer<'a> {
                 if intensity(c) <= 0.0 {
                     continue;
                 }
-                if let Some(v) = self.source_contribution(r, si, sample.dir, c) {
-                    r.color += v;
-                }
+                shots.push(Shot {
+                    source: si,
+                    dir: sample.dir,
+                    c,
+                    hit: None,
+                });
+            }
+        }
+        for shot in shots.iter_mut() {
+            shot.hit = self.source_surface_hit(r, shot.source, shot.dir);
+        }
+        for shot in &shots {
+            if let Some(v) = self.source_contribution(r, shot) {
+                r.color += v;
             }
         }
         samples.clear();
         SAMPLE_BUFFER.set(samples);
+        shots.clear();
+        SHOT_BUFFER.set(shots);
     }
 
-    /// The radiance a shadow ray toward source `si` brings, times `c`, or `None` when
-    /// blocked.
-    fn source_contribution(&self, r: &RayState, si: usize, dir: Vec3, c: Color) -> Option<Color> {
+    /// Where a shadow ray from `r` along `dir` meets source `si`'s surface, when
+    /// [`Tracer::object_source_shadow`] will need it (`None` inside means a miss).
+    fn source_surface_hit(&self, r: &RayState, si: usize, dir: Vec3) -> Option<Option<ShapeHit>> {
         let source = self.scene.sources.get(si)?;
-        if self.scene.opaque_to_object_shadows
-            && source.parent.is_none()
-            && let SourceTarget::Object(target) = source.target
-            && let Some(v) = self.object_source_shadow(r, target, dir, c)
+        if !self.scene.opaque_to_object_shadows || source.parent.is_some() {
+            return None;
+        }
+        let SourceTarget::Object(target) = source.target else {
+            return None;
+        };
+        let ray = Ray::new(r.point, dir);
+        Some(match &self.scene.object(target)?.shape {
+            Shape::Sphere(s) => s.intersect_within(&ray, f64::INFINITY),
+            shape => shape.intersect(&ray),
+        })
+    }
+
+    /// The radiance a shadow ray toward a source brings, times its coefficient, or
+    /// `None` when blocked.
+    fn source_contribution(&self, r: &RayState, shot: &Shot) -> Option<Color> {
+        let &Shot {
+            source: si,
+            dir,
+            c,
+            hit,
+        } = shot;
+        let source = self.scene.sources.get(si)?;
+        if let (SourceTarget::Object(target), Some(hit)) = (source.target, hit)
+            && let Some(v) = self.object_source_shadow(r, target, dir, c, hit)
         {
             return v;
         }
@@ -826,8 +881,9 @@ impl<'a> Tracer<'a> {
     }
 
     /// [`Tracer::source_contribution`] toward the surface source `target` (no virtual
-    /// one) in a scene opaque to object shadows, without a shadow ray's state: the
-    /// value `source_value` finds from the emitter alone, kept when the source is the
+    /// one) in a scene opaque to object shadows, met by the shadow ray at `hit`
+    /// ([`Tracer::source_surface_hit`]), without a shadow ray's state: the value
+    /// `source_value` finds from the emitter alone, kept when the source is the
     /// nearest surface. `None` where the emitter's value needs a ray (an `illum`, a
     /// back seen with `-bv-`): then the general path decides.
     fn object_source_shadow(
@@ -836,6 +892,7 @@ impl<'a> Tracer<'a> {
         target: u32,
         dir: Vec3,
         c: Color,
+        hit: Option<ShapeHit>,
     ) -> Option<Option<Color>> {
         // The shadow ray `spawn` would make: unweighted, so only its limits matter.
         if !may_spawn(r, child_weight(r, 1.0)) {
@@ -847,16 +904,12 @@ impl<'a> Tracer<'a> {
         let Some(Material::Emitter(e)) = obj.material.and_then(|m| self.scene.material(m)) else {
             return None;
         };
-        let ray = Ray::new(r.point, dir);
-        let hit = match &obj.shape {
-            Shape::Sphere(s) => s.intersect_within(&ray, f64::INFINITY),
-            shape => shape.intersect(&ray),
-        };
         let Some(h) = hit else {
             return Some(None);
         };
         let seen = e.aimed_shadow_radiance(h.rod, dir, self.options.backface_visible)?;
         let v = absorbed(seen, r.extinction, h.t) * c;
+        let ray = Ray::new(r.point, dir);
         Some(
             self.source_is_nearest(&ray, target, h.t, Some(h))
                 .then_some(v),
