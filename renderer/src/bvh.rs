@@ -546,13 +546,15 @@ impl Bvh {
         }
     }
 
-    /// Visits every leaf slot whose box the ray enters before `limit`, nearer boxes
-    /// first. `visit` tests the primitive in one slot ([`Bvh::primitive`]) and returns
+    /// Visits every leaf slot whose box the ray enters before `limit`, going on at
+    /// each node with the nearest child entered. `visit` tests the primitive in one slot ([`Bvh::primitive`]) and returns
     /// the new limit (which may only shrink; a negative one ends the traversal).
     ///
     /// All children's boxes are tested at their parent, and only those the ray enters
-    /// are pushed, farther ones first, with their entry distance: a popped node whose
-    /// entry lies beyond the (meanwhile shrunk) limit is skipped without touching it.
+    /// are pushed (of two the farther; of more all but the nearest, unsorted: sorting
+    /// them cost more than the better order saved), with their entry distance: a
+    /// popped node whose entry lies beyond the (meanwhile shrunk) limit is skipped
+    /// without touching it.
     ///
     /// On a processor with AVX2 the walk (and `visit`, where inlined) runs as code
     /// compiled for it: eight lanes in one vector instead of two. Both are the same
@@ -622,8 +624,7 @@ impl Bvh {
             };
             // Lanes are 0..WIDTH, a power of two (the mask spares the bounds checks).
             let child = |c: u32| (node.child[(c & LANE) as usize], t0[(c & LANE) as usize]);
-            // The children entered: the nearest next, the others onto the stack,
-            // farthest first. One or two (the common cases) without sorting.
+            // The children entered: the nearest next, the others onto the stack.
             let mut next = match hits.count_ones() {
                 0 => None,
                 1 => Some(child(hits.trailing_zeros())),
@@ -637,25 +638,21 @@ impl Bvh {
                     Some(near)
                 }
                 _ => {
-                    // Insertion sort of three to eight.
-                    let mut order = [(Link::default(), 0f32); WIDTH];
-                    let mut n = 0;
+                    // The nearest of three to eight; the others pushed as they come.
                     let mut bits = hits;
+                    let mut best = child(bits.trailing_zeros());
+                    bits &= bits - 1;
                     while bits != 0 {
                         let e = child(bits.trailing_zeros());
                         bits &= bits - 1;
-                        let mut j = n;
-                        while j > 0 && order[j - 1].1 > e.1 {
-                            order[j] = order[j - 1];
-                            j -= 1;
+                        if e.1 < best.1 {
+                            push(best);
+                            best = e;
+                        } else {
+                            push(e);
                         }
-                        order[j] = e;
-                        n += 1;
                     }
-                    for &e in order[1..n].iter().rev() {
-                        push(e);
-                    }
-                    Some(order[0])
+                    Some(best)
                 }
             };
             // Straight down to an interior child: no leaf (no call) on this path, so
