@@ -38,7 +38,7 @@ const SORTED_BATCH: usize = 1 << 18;
 const SORT_MIN: usize = 64;
 /// Scenes whose nodes and surfaces take more bytes than this (a core's L2 cache here)
 /// have their batches traced in space order; smaller ones stay in cache whatever the
-/// order, and sorting would only cost time (about 2% on `bench/`'s room).
+/// order, and sorting would only cost time (about 1% of `bench/`'s room's).
 const SORT_ABOVE_BYTES: usize = 1 << 20;
 const _: () = assert!(BATCH <= ray_order::MAX_RAYS && SORTED_BATCH <= ray_order::MAX_RAYS);
 
