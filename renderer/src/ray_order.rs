@@ -67,13 +67,6 @@ impl RayOrder {
         self.order.extend(n as u32..rays.len() as u32);
         &self.order
     }
-
-    /// `0..n`: the input order.
-    pub fn as_given(&mut self, n: usize) -> &[u32] {
-        self.order.clear();
-        self.order.extend(0..n as u32);
-        &self.order
-    }
 }
 
 /// Sorts `keys` by their cell codes (the bits above `INDEX_BITS`), stably: a radix

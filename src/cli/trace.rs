@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use radc_lang::Severity;
-use radc_renderer::math::{Vec3, normalize};
+use radc_renderer::math::{Bounds, Vec3, normalize};
 use radc_renderer::ray_order::{self, RayOrder};
 use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
@@ -380,13 +380,19 @@ fn run_parsed(args: &[String]) -> ExitCode {
     let tracer = Tracer::new(&scene, a.options.clone());
     let stdin = std::io::stdin();
     let mut input = RayReader::new(BufReader::with_capacity(1 << 16, stdin.lock()), a.input);
-    let batch = if scene.traversal_bytes() > SORT_ABOVE_BYTES {
+    let mut work = Work {
+        space: scene
+            .bvh
+            .extent()
+            .filter(|_| scene.traversal_bytes() > SORT_ABOVE_BYTES),
+        ..Work::default()
+    };
+    let batch = if work.space.is_some() {
         SORTED_BATCH
     } else {
         BATCH
     };
     let mut rays = Vec::with_capacity(batch);
-    let mut work = Work::default();
     let mut last = (Vec3::ZERO, Vec3::ZERO);
     let mut index = 0u64;
     loop {
@@ -438,6 +444,8 @@ fn run_parsed(args: &[String]) -> ExitCode {
 struct Work {
     /// One per parallel task; at least one after a batch (the flush record's).
     chunks: Vec<Chunk>,
+    /// The scene's box, when batches are traced in space order (`SORT_ABOVE_BYTES`).
+    space: Option<Bounds>,
     /// The batch's indices in the order traced.
     order: RayOrder,
     /// The rays in that order, each with its index.
@@ -465,8 +473,7 @@ impl Work {
         if self.chunks.len() < used.max(1) {
             self.chunks.resize_with(used.max(1), Chunk::default);
         }
-        let sort = rays.len() >= SORT_MIN && scene.traversal_bytes() > SORT_ABOVE_BYTES;
-        let extent = scene.bvh.extent().filter(|_| sort);
+        let extent = self.space.filter(|_| rays.len() >= SORT_MIN);
         let last = rays.len().wrapping_sub(1) as u32;
         let order = match extent {
             Some(extent) => {
