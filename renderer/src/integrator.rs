@@ -656,16 +656,13 @@ impl<'a> Tracer<'a> {
 
     /// Whether `ray` hits any surface (`nearest` would find one): stops at the first.
     fn hits_anything(&self, ray: &Ray) -> bool {
-        let mut hit = false;
         let scene = self.scene;
-        scene.bvh.traverse(ray, f64::INFINITY, |slot| {
-            hit = scene
+        scene.bvh.any(ray, f64::INFINITY, |slot| {
+            scene
                 .surfaces
                 .intersect(slot, &scene.objects, ray, f64::INFINITY)
-                .is_some();
-            if hit { -1.0 } else { f64::INFINITY }
-        });
-        hit
+                .is_some()
+        })
     }
 
     fn rejects(&self, best: Option<&Candidate>, new: &Candidate) -> bool {
@@ -925,10 +922,57 @@ impl<'a> Tracer<'a> {
     /// next could pass the decision on to the source).
     fn source_is_nearest(&self, ray: &Ray, target: u32, t: f64, hit: Option<ShapeHit>) -> bool {
         let settle = t - SETTLE * (FTINY + 1e-6 * t);
+        // With the source's hit known, the other surfaces mostly decide alone.
+        if hit.is_some()
+            && let Some(blocked) = self.blocked_before(ray, target, t, settle)
+        {
+            return !blocked;
+        }
         !matches!(
             self.nearest(ray, t, settle, hit.map(|h| (target, h))),
             Some(b) if b.object != target
         )
+    }
+
+    /// [`Tracer::source_is_nearest`]'s answer where it follows from the other surfaces
+    /// alone, whatever order `nearest` meets them in: `Some(false)` when no surface but
+    /// the source has a hit in `(FTINY, t + FTINY]` (then `nearest` can only find the
+    /// source or nothing), `Some(true)` when one has a hit before `settle - FTINY`
+    /// (`nearest` always reaches it, or stops earlier at a surface as near: every
+    /// surface it holds by then lies at or beyond `settle`, more than `FTINY` behind
+    /// it, so it is taken, and being before `settle` it ends the search). Hits in
+    /// between, where the tie rules and the order decide, give `None`: the caller asks
+    /// `nearest`.
+    ///
+    /// This walk keeps no nearest candidate, so it skips the source and needs no
+    /// ordering of children: for unblocked shadow rays, most of them, half the work.
+    fn blocked_before(&self, ray: &Ray, target: u32, t: f64, settle: f64) -> Option<bool> {
+        let scene = self.scene;
+        let tmax = t + FTINY;
+        let blocking = settle - FTINY;
+        let mut unsure = false;
+        let blocked = scene.bvh.any(ray, tmax, |slot| {
+            if scene.surfaces.object_at(slot) == Some(target) {
+                return false;
+            }
+            match scene.surfaces.intersect(slot, &scene.objects, ray, tmax) {
+                Some((_, h)) if h.t > FTINY && h.t <= tmax => {
+                    if h.t < blocking {
+                        return true;
+                    }
+                    unsure = true;
+                    false
+                }
+                _ => false,
+            }
+        });
+        if blocked {
+            Some(true)
+        } else if unsure {
+            None
+        } else {
+            Some(false)
+        }
     }
 
     /// [`Tracer::source_contribution`] by a shadow ray's full state.
@@ -1145,6 +1189,61 @@ mod tests {
         assert_same_both_ways(&mut scene, set, &Options::default(), 100, |t| {
             grid_radiance(t, 40, Vec3::new(0.05, -0.02, 1.3))
         });
+    }
+
+    /// [`Tracer::blocked_before`], where it answers, answers as the full search
+    /// (`nearest`) does, and it leaves to that search exactly the shadow rays that meet
+    /// another surface within the tie window around the source: the lamp with a
+    /// coincident twin and the one with a ball within `FTINY` below it.
+    #[test]
+    fn clear_and_blocked_shadow_rays_are_decided_as_the_full_search_decides() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        let lamp = b.add("light", "lamp", None, PrimKind::Light { color: [10.0; 3] });
+        b.square("floor", grey, 0.0, true);
+        b.sphere("lamp_a", lamp, [0.0, 0.0, 1.5], 0.1);
+        b.sphere("twin_of_a", grey, [0.0, 0.0, 1.5], 0.1);
+        b.sphere("lamp_b", lamp, [0.6, 0.0, 1.5], 0.1);
+        b.sphere("touching_b", grey, [0.6, 0.0, 1.4 - 0.05 - 3e-7], 0.05);
+        b.sphere("lamp_c", lamp, [-0.6, 0.3, 1.2], 0.1);
+        b.sphere("ball", grey, [0.3, -0.4, 0.5], 0.2);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        let t = Tracer::new(&scene, Options::default());
+        let lamps: Vec<(u32, Vec3)> = scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.name.starts_with("lamp"))
+            .filter_map(|(i, o)| match &o.shape {
+                Shape::Sphere(s) => Some((i as u32, s.center)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(lamps.len(), 3);
+        let mut outcomes = [0usize; 3];
+        floor_grid(40, |p| {
+            for &(target, center) in &lamps {
+                let org = p + Vec3::new(0.0, 0.0, 0.001);
+                let ray = Ray::new(org, (center - org).normalize());
+                let Some(h) = scene.objects[target as usize].shape.intersect(&ray) else {
+                    continue;
+                };
+                let settle = h.t - SETTLE * (FTINY + 1e-6 * h.t);
+                let full = matches!(
+                    t.nearest(&ray, h.t, settle, Some((target, h))),
+                    Some(b) if b.object != target
+                );
+                match t.blocked_before(&ray, target, h.t, settle) {
+                    Some(blocked) => {
+                        assert_eq!(blocked, full, "{org} toward lamp {target}");
+                        outcomes[usize::from(blocked)] += 1;
+                    }
+                    None => outcomes[2] += 1,
+                }
+            }
+        });
+        let [clear, blocked, unsure] = outcomes;
+        assert!(clear > 100 && blocked > 100 && unsure > 100, "{outcomes:?}");
     }
 
     /// The shadow rays of a scene opaque to them bring, without a ray state, what the
