@@ -1206,7 +1206,7 @@ mod tests {
     /// coincident twin and the one with a ball within `FTINY` below it.
     #[test]
     fn clear_and_blocked_shadow_rays_are_decided_as_the_full_search_decides() {
-        let (mut b, grey, lamp) = lamps_with_near_blockers();
+        let (mut b, grey, _) = lamps_with_near_blockers();
         b.sphere("ball", grey, [0.3, -0.4, 0.5], 0.2);
         let scene = Scene::compile(&b.scene).expect("compiles");
         let t = Tracer::new(&scene, Options::default());
