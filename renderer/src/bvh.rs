@@ -714,21 +714,24 @@ impl Bvh {
     ///
     /// Cheaper per node than `traverse`: no entry distances kept, no nearest child
     /// chosen, leaves tested where they are met, only interior nodes stacked.
+    ///
+    /// Slot `skip` is never offered: a shadow ray's own source, whose box it always
+    /// enters, costs no call (`u32::MAX` skips nothing).
     #[inline(always)]
-    pub fn any(&self, ray: &Ray, limit: f64, stop: impl FnMut(u32) -> bool) -> bool {
+    pub fn any(&self, ray: &Ray, limit: f64, skip: u32, stop: impl FnMut(u32) -> bool) -> bool {
         #[cfg(target_arch = "x86_64")]
         if simd::avx2() {
             // SAFETY: the processor has the features `any_avx2` is compiled for.
-            return unsafe { self.any_avx2(ray, limit, stop) };
+            return unsafe { self.any_avx2(ray, limit, skip, stop) };
         }
-        self.any_walk::<lanes::Portable>(ray, limit, stop)
+        self.any_walk::<lanes::Portable>(ray, limit, skip, stop)
     }
 
     /// [`Bvh::any_walk`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
-    fn any_avx2(&self, ray: &Ray, limit: f64, stop: impl FnMut(u32) -> bool) -> bool {
-        self.any_walk::<lanes::Avx2>(ray, limit, stop)
+    fn any_avx2(&self, ray: &Ray, limit: f64, skip: u32, stop: impl FnMut(u32) -> bool) -> bool {
+        self.any_walk::<lanes::Avx2>(ray, limit, skip, stop)
     }
 
     /// [`Bvh::any`]'s walk, for whichever instruction set it is inlined into.
@@ -737,6 +740,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         limit: f64,
+        skip: u32,
         mut stop: impl FnMut(u32) -> bool,
     ) -> bool {
         if self.order.is_empty() {
@@ -771,7 +775,7 @@ impl Bvh {
                     sp += 1;
                 } else {
                     for slot in link.first..link.first.saturating_add(link.count) {
-                        if stop(slot) {
+                        if slot != skip && stop(slot) {
                             return true;
                         }
                     }
@@ -967,9 +971,15 @@ mod tests {
 
     /// The slots [`Bvh::any`] offers, by the portable walk and, where the processor
     /// has it, the AVX2 one (the same slots, in the same order), until `stop` says yes.
-    fn offered(bvh: &Bvh, ray: &Ray, limit: f64, stop: impl Fn(u32) -> bool) -> (Vec<u32>, bool) {
+    fn offered(
+        bvh: &Bvh,
+        ray: &Ray,
+        limit: f64,
+        skip: u32,
+        stop: impl Fn(u32) -> bool,
+    ) -> (Vec<u32>, bool) {
         let mut portable = Vec::new();
-        let stopped = bvh.any_walk::<lanes::Portable>(ray, limit, |slot| {
+        let stopped = bvh.any_walk::<lanes::Portable>(ray, limit, skip, |slot| {
             portable.push(slot);
             stop(slot)
         });
@@ -978,7 +988,7 @@ mod tests {
             let mut avx = Vec::new();
             // SAFETY: the processor has AVX2.
             let avx_stopped = unsafe {
-                bvh.any_avx2(ray, limit, |slot| {
+                bvh.any_avx2(ray, limit, skip, |slot| {
                     avx.push(slot);
                     stop(slot)
                 })
@@ -994,7 +1004,8 @@ mod tests {
 
     /// `any` offers each slot `traverse` visits with a limit that never shrinks, each
     /// once, and no other (the test's three-entry stack makes deep trees spill); it
-    /// ends at the first slot `stop` takes, and says so.
+    /// ends at the first slot `stop` takes, and says so; a skipped slot is never
+    /// offered.
     #[test]
     fn any_offers_what_traverse_visits_and_stops_when_told() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -1027,7 +1038,7 @@ mod tests {
             let ray = Ray::new(org, dir);
             let mut expect = visited(&bvh, &ray, limit);
             expect.sort();
-            let (mut got, stopped) = offered(&bvh, &ray, limit, |_| false);
+            let (mut got, stopped) = offered(&bvh, &ray, limit, u32::MAX, |_| false);
             assert!(!stopped);
             let all = got.clone();
             got.sort();
@@ -1037,10 +1048,15 @@ mod tests {
             assert_eq!(got, expect, "ray {k}");
             // Stopping at the middle slot offered: nothing after it.
             if let Some(&middle) = all.get(all.len() / 2) {
-                let (until, stopped) = offered(&bvh, &ray, limit, |slot| slot == middle);
+                let (until, stopped) = offered(&bvh, &ray, limit, u32::MAX, |slot| slot == middle);
                 assert!(stopped);
                 assert_eq!(until, all[..=all.len() / 2]);
                 stopped_some += 1;
+                // Skipping it: every other slot, in the same order, and no stop.
+                let (rest, stopped) = offered(&bvh, &ray, limit, middle, |slot| slot == middle);
+                assert!(!stopped);
+                let others: Vec<u32> = all.iter().copied().filter(|&s| s != middle).collect();
+                assert_eq!(rest, others);
             }
         }
         assert!(stopped_some > 100, "{stopped_some} rays met boxes");

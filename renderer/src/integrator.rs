@@ -657,7 +657,7 @@ impl<'a> Tracer<'a> {
     /// Whether `ray` hits any surface (`nearest` would find one): stops at the first.
     fn hits_anything(&self, ray: &Ray) -> bool {
         let scene = self.scene;
-        scene.bvh.any(ray, f64::INFINITY, |slot| {
+        scene.bvh.any(ray, f64::INFINITY, u32::MAX, |slot| {
             scene
                 .surfaces
                 .intersect(slot, &scene.objects, ray, f64::INFINITY)
@@ -952,7 +952,8 @@ impl<'a> Tracer<'a> {
         let tmax = t + FTINY;
         let blocking = settle - FTINY;
         let mut unsure = false;
-        let blocked = scene.bvh.any(ray, tmax, |slot| {
+        let skip = scene.surfaces.slot_of(target);
+        let blocked = scene.bvh.any(ray, tmax, skip, |slot| {
             if scene.surfaces.object_at(slot) == Some(target) {
                 return false;
             }

@@ -18,6 +18,9 @@ pub struct Surfaces {
     /// Per slot: the object, and its geometry's kind (top two bits) and index in that
     /// kind's list.
     slots: Vec<(u32, u32)>,
+    /// Per object its slot (`u32::MAX`: none), so that a walk can skip one object's
+    /// slot without asking the slot for its object.
+    slot_of: Vec<u32>,
     triangles: Vec<Triangle>,
     quads: Vec<Quad>,
     spheres: Vec<PackedSphere>,
@@ -33,8 +36,17 @@ const QUAD: u32 = 3;
 impl Surfaces {
     /// The surface of every leaf slot of `bvh`, in slot order.
     pub fn pack(objects: &[Object], bvh: &Bvh) -> Surfaces {
-        let mut s = Surfaces::default();
+        let mut s = Surfaces {
+            slot_of: vec![u32::MAX; objects.len()],
+            ..Surfaces::default()
+        };
         for &object in bvh.order() {
+            if let (Some(slot), Ok(at)) = (
+                s.slot_of.get_mut(object as usize),
+                u32::try_from(s.slots.len()),
+            ) {
+                *slot = at;
+            }
             let shape = objects.get(object as usize).map(|o| &o.shape);
             let (kind, index) = match shape {
                 Some(Shape::Polygon(p)) => s.pack_polygon(p),
@@ -73,6 +85,15 @@ impl Surfaces {
             + std::mem::size_of_val(self.triangles.as_slice())
             + std::mem::size_of_val(self.quads.as_slice())
             + std::mem::size_of_val(self.spheres.as_slice())
+    }
+
+    /// The slot holding `object`, or `u32::MAX` (which no walk offers) when none does.
+    #[inline(always)]
+    pub fn slot_of(&self, object: u32) -> u32 {
+        self.slot_of
+            .get(object as usize)
+            .copied()
+            .unwrap_or(u32::MAX)
     }
 
     /// The object in `slot`.
