@@ -715,10 +715,11 @@ impl Bvh {
     /// Cheaper per node than `traverse`: no entry distances kept, no nearest child
     /// chosen, leaves tested where they are met, only interior nodes stacked.
     ///
-    /// Slot `skip` is never offered: a shadow ray's own source, whose box it always
-    /// enters, costs no call (`u32::MAX` skips nothing).
+    /// The slots in `skip` are never offered: a shadow ray's own source, whose box it
+    /// always enters, and the surface it starts from cost no call (`u32::MAX` skips
+    /// nothing).
     #[inline(always)]
-    pub fn any(&self, ray: &Ray, limit: f64, skip: u32, stop: impl FnMut(u32) -> bool) -> bool {
+    pub fn any(&self, ray: &Ray, limit: f64, skip: [u32; 2], stop: impl FnMut(u32) -> bool) -> bool {
         #[cfg(target_arch = "x86_64")]
         if simd::avx2() {
             // SAFETY: the processor has the features `any_avx2` is compiled for.
@@ -730,7 +731,7 @@ impl Bvh {
     /// [`Bvh::any_walk`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
-    fn any_avx2(&self, ray: &Ray, limit: f64, skip: u32, stop: impl FnMut(u32) -> bool) -> bool {
+    fn any_avx2(&self, ray: &Ray, limit: f64, skip: [u32; 2], stop: impl FnMut(u32) -> bool) -> bool {
         self.any_walk::<lanes::Avx2>(ray, limit, skip, stop)
     }
 
@@ -740,7 +741,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         limit: f64,
-        skip: u32,
+        skip: [u32; 2],
         mut stop: impl FnMut(u32) -> bool,
     ) -> bool {
         if self.order.is_empty() {
@@ -775,7 +776,7 @@ impl Bvh {
                     sp += 1;
                 } else {
                     for slot in link.first..link.first.saturating_add(link.count) {
-                        if slot != skip && stop(slot) {
+                        if slot != skip[0] && slot != skip[1] && stop(slot) {
                             return true;
                         }
                     }
@@ -975,7 +976,7 @@ mod tests {
         bvh: &Bvh,
         ray: &Ray,
         limit: f64,
-        skip: u32,
+        skip: [u32; 2],
         stop: impl Fn(u32) -> bool,
     ) -> (Vec<u32>, bool) {
         let mut portable = Vec::new();
@@ -1038,7 +1039,7 @@ mod tests {
             let ray = Ray::new(org, dir);
             let mut expect = visited(&bvh, &ray, limit);
             expect.sort();
-            let (mut got, stopped) = offered(&bvh, &ray, limit, u32::MAX, |_| false);
+            let (mut got, stopped) = offered(&bvh, &ray, limit, [u32::MAX; 2], |_| false);
             assert!(!stopped);
             let all = got.clone();
             got.sort();
@@ -1048,14 +1049,16 @@ mod tests {
             assert_eq!(got, expect, "ray {k}");
             // Stopping at the middle slot offered: nothing after it.
             if let Some(&middle) = all.get(all.len() / 2) {
-                let (until, stopped) = offered(&bvh, &ray, limit, u32::MAX, |slot| slot == middle);
+                let (until, stopped) = offered(&bvh, &ray, limit, [u32::MAX; 2], |slot| slot == middle);
                 assert!(stopped);
                 assert_eq!(until, all[..=all.len() / 2]);
                 stopped_some += 1;
-                // Skipping it: every other slot, in the same order, and no stop.
-                let (rest, stopped) = offered(&bvh, &ray, limit, middle, |slot| slot == middle);
+                // Skipping it (and the first): every other slot, in the same order, and
+                // no stop.
+                let skip = [middle, all[0]];
+                let (rest, stopped) = offered(&bvh, &ray, limit, skip, |slot| slot == middle);
                 assert!(!stopped);
-                let others: Vec<u32> = all.iter().copied().filter(|&s| s != middle).collect();
+                let others: Vec<u32> = all.iter().copied().filter(|s| !skip.contains(s)).collect();
                 assert_eq!(rest, others);
             }
         }

@@ -4,7 +4,8 @@
 //! source sample (`direct()` in source.c, testing every sample: rtrace `-dt 0`). Indirect
 //! light is sampled by [`crate::ambient`] for `-ab` bounces, then the constant `-av`.
 
-use crate::lights::{SourceSample, SourceTarget};
+use crate::lights::{Lamp, SourceSample, SourceTarget};
+use crate::scene::MAX_LAMPS;
 use crate::materials::plastic::Normal;
 use crate::materials::{Material, MaterialId};
 use crate::math::{Color, FHUGE, FTINY, Vec3, brightness, intensity};
@@ -145,6 +146,42 @@ struct Shot {
     dir: Vec3,
     c: Color,
     hit: Option<Option<ShapeHit>>,
+}
+
+/// The packed polygon a point's shadow rays start from: its slot, normal, and the
+/// point's gap to its plane, as its test computes them. A walk may skip the slot for
+/// a ray its plane test surely rejects ([`StartPlane::skip`]): it cannot hit the
+/// surface it leaves, and testing it is most of the calls a shadow walk makes.
+#[derive(Clone, Copy)]
+struct StartPlane {
+    slot: u32,
+    normal: Vec3,
+    gap: f64,
+}
+
+impl StartPlane {
+    /// No polygon: `skip` always gives `u32::MAX` (a zero `rod`).
+    const NONE: StartPlane = StartPlane {
+        slot: u32::MAX,
+        normal: Vec3::ZERO,
+        gap: f64::NAN,
+    };
+
+    /// The slot to skip for a shadow ray along `dir`, or `u32::MAX`: the slot when the
+    /// polygon's test would stop at the plane. Its `rod`, bit for bit, then `t = gap /
+    /// rod` need not be divided out: a gap of the other sign than `rod` (or none) puts
+    /// `t` at or behind the origin, and one well under `FTINY * |rod|` keeps it below
+    /// `FTINY` (either way the test rejects `t <= FTINY`); anything else is tested.
+    #[inline(always)]
+    fn skip(&self, dir: Vec3) -> u32 {
+        let rod = -dir.dot(self.normal);
+        let gap = self.gap;
+        if rod.abs() <= FTINY || gap * rod <= 0.0 || gap.abs() < 0.5 * FTINY * rod.abs() {
+            self.slot
+        } else {
+            u32::MAX
+        }
+    }
 }
 
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
@@ -655,9 +692,10 @@ impl<'a> Tracer<'a> {
     }
 
     /// Whether `ray` hits any surface (`nearest` would find one): stops at the first.
-    fn hits_anything(&self, ray: &Ray) -> bool {
+    /// Slot `from` ([`Tracer::start_slot`]) has no hit and is not tested.
+    fn hits_anything(&self, ray: &Ray, from: u32) -> bool {
         let scene = self.scene;
-        scene.bvh.any(ray, f64::INFINITY, u32::MAX, |slot| {
+        scene.bvh.any(ray, f64::INFINITY, [from, u32::MAX], |slot| {
             scene
                 .surfaces
                 .intersect(slot, &scene.objects, ray, f64::INFINITY)
@@ -759,6 +797,13 @@ impl<'a> Tracer<'a> {
     /// and a square root, each waiting for the one before; side by side, the chains of
     /// different samples overlap, where between shadow walks each would stall alone.
     pub fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
+        if let Some(lamps) = &self.scene.lamps
+            && !(self.options.source_jitter > 0.0)
+            && !self.options.exact_sources
+        {
+            self.direct_lamps(r, coef, lamps);
+            return;
+        }
         // The thread's buffers, taken for this call so that no call allocates once
         // they have grown (a nested call, through a shadow ray, finds them empty and
         // uses fresh ones).
@@ -797,8 +842,9 @@ impl<'a> Tracer<'a> {
         for shot in shots.iter_mut() {
             shot.hit = self.source_surface_hit(r, shot.source, shot.dir);
         }
+        let start = self.start_plane(r);
         for shot in &shots {
-            if let Some(v) = self.source_contribution(r, shot) {
+            if let Some(v) = self.source_contribution(r, shot, &start) {
                 r.color += v;
             }
         }
@@ -806,6 +852,49 @@ impl<'a> Tracer<'a> {
         SAMPLE_BUFFER.set(samples);
         shots.clear();
         SHOT_BUFFER.set(shots);
+    }
+
+    /// [`Tracer::direct`] when every source is a [`Lamp`] (`Scene::lamps`) and their
+    /// samples are the centres: the same three passes and the same values, added in
+    /// the same order, with the lamps' samples and surfaces at hand and the shots in
+    /// arrays (a source gives at most one).
+    fn direct_lamps(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color, lamps: &[Lamp]) {
+        let mut dirs = [Vec3::ZERO; MAX_LAMPS];
+        let mut coefs = [Color::ZERO; MAX_LAMPS];
+        let mut which = [0usize; MAX_LAMPS];
+        let mut n = 0;
+        for (si, lamp) in lamps.iter().enumerate() {
+            let Some(sample) = lamp.sample(r.point) else {
+                continue;
+            };
+            let c = coef(sample.dir, sample.omega);
+            if intensity(c) <= 0.0 {
+                continue;
+            }
+            let (Some(d), Some(k), Some(w)) = (dirs.get_mut(n), coefs.get_mut(n), which.get_mut(n))
+            else {
+                break;
+            };
+            (*d, *k, *w) = (sample.dir, c, si);
+            n += 1;
+        }
+        let mut hits = [None; MAX_LAMPS];
+        for k in 0..n {
+            hits[k] = lamps[which[k]]
+                .sphere
+                .intersect_within(&Ray::new(r.point, dirs[k]), f64::INFINITY);
+        }
+        let start = self.start_plane(r);
+        for k in 0..n {
+            let (si, dir, c) = (which[k], dirs[k], coefs[k]);
+            let v = match self.object_source_shadow(r, lamps[si].target, dir, c, hits[k], &start) {
+                Some(v) => v,
+                None => self.traced_source_contribution(r, si, dir, c),
+            };
+            if let Some(v) = v {
+                r.color += v;
+            }
+        }
     }
 
     /// Where a shadow ray from `r` along `dir` meets source `si`'s surface, when
@@ -827,7 +916,7 @@ impl<'a> Tracer<'a> {
 
     /// The radiance a shadow ray toward a source brings, times its coefficient, or
     /// `None` when blocked.
-    fn source_contribution(&self, r: &RayState, shot: &Shot) -> Option<Color> {
+    fn source_contribution(&self, r: &RayState, shot: &Shot, start: &StartPlane) -> Option<Color> {
         let &Shot {
             source: si,
             dir,
@@ -836,14 +925,14 @@ impl<'a> Tracer<'a> {
         } = shot;
         let source = self.scene.sources.get(si)?;
         if let (SourceTarget::Object(target), Some(hit)) = (source.target, hit)
-            && let Some(v) = self.object_source_shadow(r, target, dir, c, hit)
+            && let Some(v) = self.object_source_shadow(r, target, dir, c, hit, start)
         {
             return v;
         }
         if self.scene.opaque_to_shadows
             && source.parent.is_none()
             && let SourceTarget::Distant(d) = source.target
-            && let Some(v) = self.distant_source_shadow(r, d, dir, c)
+            && let Some(v) = self.distant_source_shadow(r, d, dir, c, start)
         {
             return v;
         }
@@ -861,6 +950,7 @@ impl<'a> Tracer<'a> {
         d: u32,
         dir: Vec3,
         c: Color,
+        start: &StartPlane,
     ) -> Option<Option<Color>> {
         if !may_spawn(r, child_weight(r, 1.0)) {
             return Some(None);
@@ -874,7 +964,8 @@ impl<'a> Tracer<'a> {
         };
         let seen = e.aimed_shadow_radiance(1.0, dir, self.options.backface_visible)?;
         let v = absorbed(seen, r.extinction, FHUGE) * c;
-        Some((!self.hits_anything(&Ray::new(r.point, dir))).then_some(v))
+        let ray = Ray::new(r.point, dir);
+        Some((!self.hits_anything(&ray, start.skip(dir))).then_some(v))
     }
 
     /// [`Tracer::source_contribution`] toward the surface source `target` (no virtual
@@ -890,6 +981,7 @@ impl<'a> Tracer<'a> {
         dir: Vec3,
         c: Color,
         hit: Option<ShapeHit>,
+        start: &StartPlane,
     ) -> Option<Option<Color>> {
         // The shadow ray `spawn` would make: unweighted, so only its limits matter.
         if !may_spawn(r, child_weight(r, 1.0)) {
@@ -908,9 +1000,21 @@ impl<'a> Tracer<'a> {
         let v = absorbed(seen, r.extinction, h.t) * c;
         let ray = Ray::new(r.point, dir);
         Some(
-            self.source_is_nearest(&ray, target, h.t, Some(h))
+            self.source_is_nearest(&ray, target, h.t, Some(h), start.skip(dir))
                 .then_some(v),
         )
+    }
+
+    /// The surface `r`'s shadow rays start from, when its test is a packed polygon's.
+    fn start_plane(&self, r: &RayState) -> StartPlane {
+        let surfaces = &self.scene.surfaces;
+        if let Target::Object(ObjectId(o)) = r.hit {
+            let slot = surfaces.slot_of(o);
+            if let Some((normal, gap)) = surfaces.plane_gap(slot, r.point) {
+                return StartPlane { slot, normal, gap };
+            }
+        }
+        StartPlane::NONE
     }
 
     /// In a scene opaque to object shadows (`Scene::opaque_to_object_shadows`): whether
@@ -920,11 +1024,18 @@ impl<'a> Tracer<'a> {
     /// surface clearly before it: one more than `SETTLE` nearer beats it (within FTINY
     /// surfaces tie, so only a chain of that many surfaces each within FTINY of the
     /// next could pass the decision on to the source).
-    fn source_is_nearest(&self, ray: &Ray, target: u32, t: f64, hit: Option<ShapeHit>) -> bool {
+    fn source_is_nearest(
+        &self,
+        ray: &Ray,
+        target: u32,
+        t: f64,
+        hit: Option<ShapeHit>,
+        from: u32,
+    ) -> bool {
         let settle = t - SETTLE * (FTINY + 1e-6 * t);
         // With the source's hit known, the other surfaces mostly decide alone.
         if hit.is_some()
-            && let Some(blocked) = self.blocked_before(ray, target, t, settle)
+            && let Some(blocked) = self.blocked_before(ray, target, t, settle, from)
         {
             return !blocked;
         }
@@ -947,12 +1058,21 @@ impl<'a> Tracer<'a> {
     /// This walk keeps no nearest candidate, so it skips the source and needs no
     /// ordering of children: a fifth fewer instructions a shadow ray in the room of
     /// `bench/trace_rays.py` (851 to 672), most of whose shadow rays are unblocked.
-    fn blocked_before(&self, ray: &Ray, target: u32, t: f64, settle: f64) -> Option<bool> {
+    ///
+    /// Slot `from` ([`Tracer::start_slot`]) has no hit and is not tested.
+    fn blocked_before(
+        &self,
+        ray: &Ray,
+        target: u32,
+        t: f64,
+        settle: f64,
+        from: u32,
+    ) -> Option<bool> {
         let scene = self.scene;
         let tmax = t + FTINY;
         let blocking = settle - FTINY;
         let mut unsure = false;
-        let skip = scene.surfaces.slot_of(target);
+        let skip = [scene.surfaces.slot_of(target), from];
         let blocked = scene.bvh.any(ray, tmax, skip, |slot| {
             if scene.surfaces.object_at(slot) == Some(target) {
                 return false;
@@ -1013,14 +1133,14 @@ impl<'a> Tracer<'a> {
         if self.scene.opaque_to_shadows && matches!(source.target, SourceTarget::Distant(_)) {
             // Whatever it hits shades it black (`Scene::opaque_to_shadows`), and the
             // distant source is no surface: the first hit found decides.
-            return (!self.hits_anything(&ray)).then_some(value?);
+            return (!self.hits_anything(&ray, u32::MAX)).then_some(value?);
         }
         if self.scene.opaque_to_object_shadows
             && let (SourceTarget::Object(target), Some(v)) = (source.target, value)
         {
             // `source_value` met the source at `sr.length`.
             return self
-                .source_is_nearest(&ray, target, sr.length, None)
+                .source_is_nearest(&ray, target, sr.length, None, u32::MAX)
                 .then_some(v);
         }
         match self.nearest(&ray, f64::INFINITY, f64::NEG_INFINITY, None) {
@@ -1235,7 +1355,7 @@ mod tests {
                     t.nearest(&ray, h.t, settle, Some((target, h))),
                     Some(b) if b.object != target
                 );
-                match t.blocked_before(&ray, target, h.t, settle) {
+                match t.blocked_before(&ray, target, h.t, settle, u32::MAX) {
                     Some(blocked) => {
                         assert_eq!(blocked, full, "{org} toward lamp {target}");
                         outcomes[usize::from(blocked)] += 1;

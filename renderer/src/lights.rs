@@ -67,6 +67,53 @@ pub struct Source {
     pub axes: [Vec3; 3],
 }
 
+/// A source as most scenes' lamps are: a sphere that is its own surface (no virtual
+/// image), lighting every point the same way (no `glow` distance, spotlight cone or
+/// mirror beam). Its one sample is the centre ([`Lamp::sample`]), and its surface is a
+/// sphere whose test direct lighting calls without looking anything up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lamp {
+    pub center: Vec3,
+    pub radius: f64,
+    /// The object the source is.
+    pub target: u32,
+    pub sphere: crate::shapes::PackedSphere,
+}
+
+impl Lamp {
+    /// `source` as a lamp, when it is one, its surface a sphere among `objects`.
+    pub fn of(source: &Source, objects: &[crate::scene::Object]) -> Option<Lamp> {
+        let (SourceShape::Sphere { center, radius }, SourceTarget::Object(target)) =
+            (&source.shape, source.target)
+        else {
+            return None;
+        };
+        if source.parent.is_some()
+            || source.proximity.is_some()
+            || source.spot.is_some()
+            || source.beam.is_some()
+        {
+            return None;
+        }
+        let crate::shapes::Shape::Sphere(s) = &objects.get(target as usize)?.shape else {
+            return None;
+        };
+        Some(Lamp {
+            center: *center,
+            radius: *radius,
+            target,
+            sphere: crate::shapes::PackedSphere::of(s),
+        })
+    }
+
+    /// What [`Source::jittered_samples`] gives without jitter or `-dx+` from `org`: the
+    /// centre, or nothing at the centre itself.
+    #[inline(always)]
+    pub fn sample(&self, org: Vec3) -> Option<SourceSample> {
+        sphere_sample(self.center, self.radius, org, [0.0; 3], [1.0; 3])
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum SourceTarget {
     Object(u32),

@@ -5,7 +5,7 @@ use radc_lang::scene::ir::{self, ModRef, PrimId, PrimKind};
 use radc_lang::schema::Category;
 
 use crate::bvh::Bvh;
-use crate::lights::{Source, SourceShape, SourceTarget};
+use crate::lights::{Lamp, Source, SourceShape, SourceTarget};
 use crate::materials::anisotropic::Anisotropic;
 use crate::materials::antimatter::Antimatter;
 use crate::materials::dielectric::Dielectric;
@@ -96,7 +96,15 @@ pub struct Scene {
     /// is the nearest surface, and nothing otherwise. Derived with `surfaces`.
     #[serde(skip)]
     pub opaque_to_object_shadows: bool,
+    /// Every source as a [`Lamp`], when each is one, there are at most [`MAX_LAMPS`]
+    /// and the scene is opaque to object shadows: direct lighting then takes
+    /// [`crate::integrator::Tracer::direct`]'s lamp path. Derived with `surfaces`.
+    #[serde(skip)]
+    pub lamps: Option<Vec<Lamp>>,
 }
+
+/// The most sources the lamp path of direct lighting takes (its buffers are arrays).
+pub const MAX_LAMPS: usize = 8;
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
 /// time), by primitive name and type.
@@ -173,6 +181,14 @@ impl Scene {
         });
         self.opaque_to_shadows = opaque_to_shadows;
         self.opaque_to_object_shadows = opaque_to_object_shadows;
+        self.lamps = (opaque_to_object_shadows && self.sources.len() <= MAX_LAMPS)
+            .then(|| {
+                self.sources
+                    .iter()
+                    .map(|s| Lamp::of(s, &self.objects))
+                    .collect::<Option<Vec<Lamp>>>()
+            })
+            .flatten();
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file

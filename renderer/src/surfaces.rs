@@ -9,6 +9,7 @@
 //! by [`crate::scene::Scene::compile`] and when a compiled scene is loaded.
 
 use crate::bvh::Bvh;
+use crate::math::Vec3;
 use crate::ray::{Ray, ShapeHit};
 use crate::scene::Object;
 use crate::shapes::{PackedSphere, Polygon, Quad, Shape, Triangle};
@@ -94,6 +95,19 @@ impl Surfaces {
             .get(object as usize)
             .copied()
             .unwrap_or(u32::MAX)
+    }
+
+    /// When `slot` holds a packed polygon: its normal and how far `org` lies off its
+    /// plane, as its test computes them ([`crate::shapes::PackedPolygon::plane_gap`]).
+    #[inline(always)]
+    pub fn plane_gap(&self, slot: u32, org: Vec3) -> Option<(Vec3, f64)> {
+        let &(_, at) = self.slots.get(slot as usize)?;
+        let index = (at & INDEX) as usize;
+        match at >> KIND_SHIFT {
+            TRIANGLE => self.triangles.get(index).map(|p| (p.normal(), p.plane_gap(org))),
+            QUAD => self.quads.get(index).map(|p| (p.normal(), p.plane_gap(org))),
+            _ => None,
+        }
     }
 
     /// The object in `slot`.

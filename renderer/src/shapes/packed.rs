@@ -65,14 +65,8 @@ impl<const N: usize> PackedPolygon<N> {
     /// [`Polygon::intersect_within`].
     #[inline]
     pub fn intersect_within(&self, ray: &Ray, tmax: f64) -> Option<ShapeHit> {
-        let rod = -ray.dir.dot(self.normal);
-        if rod.abs() <= FTINY {
-            return None;
-        }
-        let t = (ray.org.dot(self.normal) - self.offset) / rod;
-        // `t <= FTINY || !t.is_finite()` in two comparisons: beyond FTINY, t is no NaN.
-        let ahead = t > FTINY && t < f64::INFINITY;
-        if !ahead || t > tmax {
+        let (t, rod) = self.plane_hit(ray)?;
+        if t > tmax {
             return None;
         }
         let p = ray.at(t);
@@ -86,6 +80,32 @@ impl<const N: usize> PackedPolygon<N> {
             normal: self.normal,
             rod,
         })
+    }
+
+    /// Where `ray` meets the polygon's plane ahead (beyond FTINY), and `rod`; `None`
+    /// where [`PackedPolygon::intersect_within`] stops at the plane, whatever its limit.
+    #[inline(always)]
+    pub fn plane_hit(&self, ray: &Ray) -> Option<(f64, f64)> {
+        let rod = -ray.dir.dot(self.normal);
+        if rod.abs() <= FTINY {
+            return None;
+        }
+        let t = self.plane_gap(ray.org) / rod;
+        // `t <= FTINY || !t.is_finite()` in two comparisons: beyond FTINY, t is no NaN.
+        let ahead = t > FTINY && t < f64::INFINITY;
+        ahead.then_some((t, rod))
+    }
+
+    /// How far `org` lies off the plane (times the normal's length), as
+    /// [`PackedPolygon::plane_hit`] computes it; with the normal, all a caller needs to
+    /// know for which rays from `org` that test stops at the plane.
+    #[inline(always)]
+    pub fn plane_gap(&self, org: Vec3) -> f64 {
+        org.dot(self.normal) - self.offset
+    }
+
+    pub fn normal(&self) -> Vec3 {
+        self.normal
     }
 
     /// [`Polygon::contains`] for projected coordinates, its edges `N-1 -> 0`, `0 -> 1`,
