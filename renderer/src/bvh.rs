@@ -197,11 +197,25 @@ fn widen(f: f32, sign: f32) -> f32 {
 /// A zero direction component gives an infinite inverse; a box side through the origin
 /// then gives `0 * inf = NaN`, which the comparisons in `entries` ignore: the slab
 /// counts as unbounded, an error towards visiting, with no fix-up on the hot path.
+#[derive(Clone, Copy)]
 struct Slabs {
     org_near: [f32; 3],
     org_far: [f32; 3],
     inv: [f32; 3],
     near: [usize; 3],
+}
+
+/// A ray's values for [`Bvh::any_prepared`], computed apart from the walk: a caller
+/// with several rays to walk prepares them together, and their divisions overlap
+/// instead of each walk waiting for its own.
+#[derive(Clone, Copy)]
+pub struct Prepared(Slabs);
+
+impl Prepared {
+    #[inline(always)]
+    pub fn of(ray: &Ray) -> Prepared {
+        Prepared(Slabs::new(ray))
+    }
 }
 
 impl Slabs {
@@ -719,7 +733,25 @@ impl Bvh {
     /// always enters, and the surface it starts from cost no call (`u32::MAX` skips
     /// nothing).
     #[inline(always)]
-    pub fn any(&self, ray: &Ray, limit: f64, skip: [u32; 2], stop: impl FnMut(u32) -> bool) -> bool {
+    pub fn any(
+        &self,
+        ray: &Ray,
+        limit: f64,
+        skip: [u32; 2],
+        stop: impl FnMut(u32) -> bool,
+    ) -> bool {
+        self.any_prepared(&Prepared::of(ray), limit, skip, stop)
+    }
+
+    /// [`Bvh::any`] for a ray prepared beforehand ([`Prepared::of`]).
+    #[inline(always)]
+    pub fn any_prepared(
+        &self,
+        ray: &Prepared,
+        limit: f64,
+        skip: [u32; 2],
+        stop: impl FnMut(u32) -> bool,
+    ) -> bool {
         #[cfg(target_arch = "x86_64")]
         if simd::avx2() {
             // SAFETY: the processor has the features `any_avx2` is compiled for.
@@ -731,7 +763,13 @@ impl Bvh {
     /// [`Bvh::any_walk`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
-    fn any_avx2(&self, ray: &Ray, limit: f64, skip: [u32; 2], stop: impl FnMut(u32) -> bool) -> bool {
+    fn any_avx2(
+        &self,
+        ray: &Prepared,
+        limit: f64,
+        skip: [u32; 2],
+        stop: impl FnMut(u32) -> bool,
+    ) -> bool {
         self.any_walk::<lanes::Avx2>(ray, limit, skip, stop)
     }
 
@@ -739,7 +777,7 @@ impl Bvh {
     #[inline(always)]
     fn any_walk<L: lanes::Lanes>(
         &self,
-        ray: &Ray,
+        ray: &Prepared,
         limit: f64,
         skip: [u32; 2],
         mut stop: impl FnMut(u32) -> bool,
@@ -747,7 +785,7 @@ impl Bvh {
         if self.order.is_empty() {
             return false;
         }
-        let s = Slabs::new(ray);
+        let s = &ray.0;
         let far = self.nodes.len() > PREFETCH_NODES;
         let limit32 = f32_up(limit);
         let mut stack = [std::mem::MaybeUninit::<u32>::uninit(); STACK];
@@ -759,7 +797,7 @@ impl Bvh {
             _ => &self.root,
         };
         loop {
-            let (_, hits) = L::entries(&s, node, limit32);
+            let (_, hits) = L::entries(s, node, limit32);
             let mut bits = hits;
             while bits != 0 {
                 let link = node.child[(bits.trailing_zeros() & LANE) as usize];
@@ -980,7 +1018,8 @@ mod tests {
         stop: impl Fn(u32) -> bool,
     ) -> (Vec<u32>, bool) {
         let mut portable = Vec::new();
-        let stopped = bvh.any_walk::<lanes::Portable>(ray, limit, skip, |slot| {
+        let prepared = Prepared::of(ray);
+        let stopped = bvh.any_walk::<lanes::Portable>(&prepared, limit, skip, |slot| {
             portable.push(slot);
             stop(slot)
         });
@@ -989,7 +1028,7 @@ mod tests {
             let mut avx = Vec::new();
             // SAFETY: the processor has AVX2.
             let avx_stopped = unsafe {
-                bvh.any_avx2(ray, limit, skip, |slot| {
+                bvh.any_avx2(&prepared, limit, skip, |slot| {
                     avx.push(slot);
                     stop(slot)
                 })
@@ -1049,7 +1088,8 @@ mod tests {
             assert_eq!(got, expect, "ray {k}");
             // Stopping at the middle slot offered: nothing after it.
             if let Some(&middle) = all.get(all.len() / 2) {
-                let (until, stopped) = offered(&bvh, &ray, limit, [u32::MAX; 2], |slot| slot == middle);
+                let (until, stopped) =
+                    offered(&bvh, &ray, limit, [u32::MAX; 2], |slot| slot == middle);
                 assert!(stopped);
                 assert_eq!(until, all[..=all.len() / 2]);
                 stopped_some += 1;

@@ -4,12 +4,13 @@
 //! source sample (`direct()` in source.c, testing every sample: rtrace `-dt 0`). Indirect
 //! light is sampled by [`crate::ambient`] for `-ab` bounces, then the constant `-av`.
 
+use crate::bvh::Prepared;
 use crate::lights::{Lamp, SourceSample, SourceTarget};
-use crate::scene::MAX_LAMPS;
 use crate::materials::plastic::Normal;
 use crate::materials::{Material, MaterialId};
 use crate::math::{Color, FHUGE, FTINY, Vec3, brightness, intensity};
 use crate::ray::{ObjectId, Ray, ShapeHit};
+use crate::scene::MAX_LAMPS;
 use crate::scene::Scene;
 use crate::shapes::Shape;
 
@@ -182,6 +183,22 @@ impl StartPlane {
             u32::MAX
         }
     }
+}
+
+/// What a shadow ray's walk may know before it starts: the slot it leaves
+/// ([`StartPlane::skip`]) and its slab values, when its caller prepared them with
+/// others ([`Prepared`]).
+struct ShadowWalk<'p> {
+    from: u32,
+    prepared: Option<&'p Prepared>,
+}
+
+impl ShadowWalk<'_> {
+    /// Nothing known beforehand.
+    const PLAIN: ShadowWalk<'static> = ShadowWalk {
+        from: u32::MAX,
+        prepared: None,
+    };
 }
 
 /// A ray being evaluated: Radiance's `RAY` without the parts radc does not model.
@@ -798,7 +815,9 @@ impl<'a> Tracer<'a> {
     /// different samples overlap, where between shadow walks each would stall alone.
     pub fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
         if let Some(lamps) = &self.scene.lamps
-            && !(self.options.source_jitter > 0.0)
+            && self.scene.opaque_to_object_shadows
+            // As the general path's jitter test: NaN jitters nothing either.
+            && (self.options.source_jitter <= 0.0 || self.options.source_jitter.is_nan())
             && !self.options.exact_sources
         {
             self.direct_lamps(r, coef, lamps);
@@ -879,15 +898,21 @@ impl<'a> Tracer<'a> {
             n += 1;
         }
         let mut hits = [None; MAX_LAMPS];
+        let mut prepared = [None; MAX_LAMPS];
         for k in 0..n {
-            hits[k] = lamps[which[k]]
-                .sphere
-                .intersect_within(&Ray::new(r.point, dirs[k]), f64::INFINITY);
+            let ray = Ray::new(r.point, dirs[k]);
+            hits[k] = lamps[which[k]].sphere.intersect_within(&ray, f64::INFINITY);
+            prepared[k] = Some(Prepared::of(&ray));
         }
         let start = self.start_plane(r);
         for k in 0..n {
             let (si, dir, c) = (which[k], dirs[k], coefs[k]);
-            let v = match self.object_source_shadow(r, lamps[si].target, dir, c, hits[k], &start) {
+            let target = lamps[si].target;
+            let walk = ShadowWalk {
+                from: start.skip(dir),
+                prepared: prepared[k].as_ref(),
+            };
+            let v = match self.object_source_shadow(r, target, dir, c, hits[k], &walk) {
                 Some(v) => v,
                 None => self.traced_source_contribution(r, si, dir, c),
             };
@@ -925,7 +950,17 @@ impl<'a> Tracer<'a> {
         } = shot;
         let source = self.scene.sources.get(si)?;
         if let (SourceTarget::Object(target), Some(hit)) = (source.target, hit)
-            && let Some(v) = self.object_source_shadow(r, target, dir, c, hit, start)
+            && let Some(v) = self.object_source_shadow(
+                r,
+                target,
+                dir,
+                c,
+                hit,
+                &ShadowWalk {
+                    from: start.skip(dir),
+                    prepared: None,
+                },
+            )
         {
             return v;
         }
@@ -981,7 +1016,7 @@ impl<'a> Tracer<'a> {
         dir: Vec3,
         c: Color,
         hit: Option<ShapeHit>,
-        start: &StartPlane,
+        walk: &ShadowWalk,
     ) -> Option<Option<Color>> {
         // The shadow ray `spawn` would make: unweighted, so only its limits matter.
         if !may_spawn(r, child_weight(r, 1.0)) {
@@ -1000,7 +1035,7 @@ impl<'a> Tracer<'a> {
         let v = absorbed(seen, r.extinction, h.t) * c;
         let ray = Ray::new(r.point, dir);
         Some(
-            self.source_is_nearest(&ray, target, h.t, Some(h), start.skip(dir))
+            self.source_is_nearest(&ray, target, h.t, Some(h), walk)
                 .then_some(v),
         )
     }
@@ -1030,12 +1065,12 @@ impl<'a> Tracer<'a> {
         target: u32,
         t: f64,
         hit: Option<ShapeHit>,
-        from: u32,
+        walk: &ShadowWalk,
     ) -> bool {
         let settle = t - SETTLE * (FTINY + 1e-6 * t);
         // With the source's hit known, the other surfaces mostly decide alone.
         if hit.is_some()
-            && let Some(blocked) = self.blocked_before(ray, target, t, settle, from)
+            && let Some(blocked) = self.blocked_before(ray, target, t, settle, walk)
         {
             return !blocked;
         }
@@ -1066,14 +1101,18 @@ impl<'a> Tracer<'a> {
         target: u32,
         t: f64,
         settle: f64,
-        from: u32,
+        walk: &ShadowWalk,
     ) -> Option<bool> {
         let scene = self.scene;
         let tmax = t + FTINY;
         let blocking = settle - FTINY;
         let mut unsure = false;
-        let skip = [scene.surfaces.slot_of(target), from];
-        let blocked = scene.bvh.any(ray, tmax, skip, |slot| {
+        let skip = [scene.surfaces.slot_of(target), walk.from];
+        let prepared = match walk.prepared {
+            Some(p) => *p,
+            None => Prepared::of(ray),
+        };
+        let blocked = scene.bvh.any_prepared(&prepared, tmax, skip, |slot| {
             if scene.surfaces.object_at(slot) == Some(target) {
                 return false;
             }
@@ -1140,7 +1179,7 @@ impl<'a> Tracer<'a> {
         {
             // `source_value` met the source at `sr.length`.
             return self
-                .source_is_nearest(&ray, target, sr.length, None, u32::MAX)
+                .source_is_nearest(&ray, target, sr.length, None, &ShadowWalk::PLAIN)
                 .then_some(v);
         }
         match self.nearest(&ray, f64::INFINITY, f64::NEG_INFINITY, None) {
@@ -1355,7 +1394,7 @@ mod tests {
                     t.nearest(&ray, h.t, settle, Some((target, h))),
                     Some(b) if b.object != target
                 );
-                match t.blocked_before(&ray, target, h.t, settle, u32::MAX) {
+                match t.blocked_before(&ray, target, h.t, settle, &ShadowWalk::PLAIN) {
                     Some(blocked) => {
                         assert_eq!(blocked, full, "{org} toward lamp {target}");
                         outcomes[usize::from(blocked)] += 1;
@@ -1433,6 +1472,103 @@ mod tests {
                 colors
             });
         }
+    }
+
+    /// Direct lighting's lamp path (`Scene::lamps`) adds what its general passes add,
+    /// bit for bit: on a floor and balls, from lamps with blockers within `FTINY`, a
+    /// coincident twin, and one lamp around part of the floor (its back seen, also with
+    /// `-bv-`, which takes the traced path), through `-me` and with `-dv-`.
+    #[test]
+    fn lamp_path_matches_the_general_passes() {
+        let (mut b, grey, lamp) = lamps_with_near_blockers();
+        b.sphere("around", lamp, [-0.5, -0.5, 0.15], 0.3);
+        b.sphere("ball", grey, [0.3, -0.4, 0.5], 0.2);
+        let mut scene = Scene::compile(&b.scene).expect("compiles");
+        assert_eq!(scene.lamps.as_ref().map(Vec::len), Some(4));
+        let set = |s: &mut Scene, on: bool| {
+            if on {
+                s.pack_surfaces();
+            } else {
+                s.lamps = None;
+            }
+        };
+        let variants = [
+            Options::default(),
+            Options {
+                backface_visible: false,
+                ..Options::default()
+            },
+            Options {
+                medium: Color::new(0.1, 0.2, 0.4),
+                ..Options::default()
+            },
+            Options {
+                direct_visible: false,
+                ..Options::default()
+            },
+        ];
+        for options in variants {
+            assert_same_both_ways(&mut scene, set, &options, 200, |t| {
+                let mut colors = Vec::new();
+                floor_grid(30, |aim| {
+                    let org = Vec3::new(0.05, -0.02, 1.3);
+                    colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
+                    colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
+                });
+                colors
+            });
+        }
+    }
+
+    /// A shadow ray's walk skips the polygon it starts on only where that polygon's own
+    /// test finds no hit: from points where rays from above met the floor (and points a
+    /// hair off it), toward directions all around, grazing ones included; it skips
+    /// most of them.
+    #[test]
+    fn start_planes_are_skipped_only_where_their_test_misses() {
+        let mut b = IrBuilder::default();
+        let grey = b.plastic("grey", 0.5);
+        b.square("floor", grey, 0.0, true);
+        let scene = Scene::compile(&b.scene).expect("compiles");
+        let t = Tracer::new(&scene, Options::default());
+        let (mut skipped, mut tested) = (0, 0);
+        floor_grid(20, |aim| {
+            let org = Vec3::new(0.31, -0.17, 2.3);
+            let mut r = t.radiance(org, (aim * 0.9 - org).normalize());
+            let Target::Object(ObjectId(o)) = r.hit else {
+                panic!("the ray toward {aim} hits the floor");
+            };
+            let slot = scene.surfaces.slot_of(o);
+            // Also from just off the plane, where rays toward it must be tested.
+            let lift = [0.0, 0.0, 1e-8, 1e-5, -1e-5][(aim.x * 10.0).rem_euclid(5.0) as usize];
+            r.point.z += lift;
+            let start = t.start_plane(&r);
+            for k in 0..200 {
+                let a = k as f64 * 0.7;
+                // Elevations from straight up to just below the plane, some within a
+                // hair of it.
+                let z = [1.0, 0.3, 1e-3, 1e-9, 1e-15, 0.0, -1e-12, -0.2][k % 8];
+                let dir = Vec3::new(a.cos(), a.sin(), z).normalize();
+                let ray = Ray::new(r.point, dir);
+                if start.skip(dir) == slot {
+                    assert!(
+                        scene
+                            .surfaces
+                            .intersect(slot, &scene.objects, &ray, f64::INFINITY)
+                            .is_none(),
+                        "skipped a hit from {} along {dir}",
+                        r.point
+                    );
+                    skipped += 1;
+                } else {
+                    tested += 1;
+                }
+            }
+        });
+        assert!(
+            skipped > 10 * tested && tested > 0,
+            "{skipped} skipped, {tested} tested"
+        );
     }
 
     /// Shadow rays toward a distant source in a scene opaque to shadows bring, without

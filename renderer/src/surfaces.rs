@@ -104,8 +104,14 @@ impl Surfaces {
         let &(_, at) = self.slots.get(slot as usize)?;
         let index = (at & INDEX) as usize;
         match at >> KIND_SHIFT {
-            TRIANGLE => self.triangles.get(index).map(|p| (p.normal(), p.plane_gap(org))),
-            QUAD => self.quads.get(index).map(|p| (p.normal(), p.plane_gap(org))),
+            TRIANGLE => self
+                .triangles
+                .get(index)
+                .map(|p| (p.normal(), p.plane_gap(org))),
+            QUAD => self
+                .quads
+                .get(index)
+                .map(|p| (p.normal(), p.plane_gap(org))),
             _ => None,
         }
     }
