@@ -1407,6 +1407,39 @@ mod tests {
         assert!(clear > 100 && blocked > 100 && unsure > 100, "{outcomes:?}");
     }
 
+    /// The settings the lamp tests render with: the defaults, `-bv-`, an absorbing
+    /// medium (`-me`) and `-dv-`.
+    fn lamp_variants() -> [Options; 4] {
+        [
+            Options::default(),
+            Options {
+                backface_visible: false,
+                ..Options::default()
+            },
+            Options {
+                medium: Color::new(0.1, 0.2, 0.4),
+                ..Options::default()
+            },
+            Options {
+                direct_visible: false,
+                ..Options::default()
+            },
+        ]
+    }
+
+    /// Rays from above toward [`floor_grid`]`(30)`, and `-I` points just above each
+    /// aim, some of them inside a lamp around (-0.5, -0.5, 0.15), which they see from
+    /// the back.
+    fn floor_and_irradiance(t: &Tracer<'_>) -> Vec<Color> {
+        let mut colors = Vec::new();
+        floor_grid(30, |aim| {
+            let org = Vec3::new(0.05, -0.02, 1.3);
+            colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
+            colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
+        });
+        colors
+    }
+
     /// The shadow rays of a scene opaque to them bring, without a ray state, what the
     /// general path's shadow rays bring, bit for bit: toward a spotlight (inside and
     /// outside its cone), a glow, a lamp seen from inside (its back, also with `-bv-`,
@@ -1443,34 +1476,9 @@ mod tests {
         b.sphere("ball", grey, [0.3, -0.1, 0.4], 0.15);
         let mut scene = Scene::compile(&b.scene).expect("compiles");
         assert!(scene.opaque_to_object_shadows);
-        let variants = [
-            Options::default(),
-            Options {
-                backface_visible: false,
-                ..Options::default()
-            },
-            Options {
-                medium: Color::new(0.1, 0.2, 0.4),
-                ..Options::default()
-            },
-            Options {
-                direct_visible: false,
-                ..Options::default()
-            },
-        ];
         let set = |s: &mut Scene, on: bool| s.opaque_to_object_shadows = on;
-        for options in variants {
-            assert_same_both_ways(&mut scene, set, &options, 200, |t| {
-                let mut colors = Vec::new();
-                floor_grid(30, |aim| {
-                    let org = Vec3::new(0.05, -0.02, 1.3);
-                    colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
-                    // `-I` points on the floor, some of them inside the lamp around
-                    // (-0.5, -0.5, 0.15), which they see from the back.
-                    colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
-                });
-                colors
-            });
+        for options in lamp_variants() {
+            assert_same_both_ways(&mut scene, set, &options, 200, floor_and_irradiance);
         }
     }
 
@@ -1492,31 +1500,8 @@ mod tests {
                 s.lamps = None;
             }
         };
-        let variants = [
-            Options::default(),
-            Options {
-                backface_visible: false,
-                ..Options::default()
-            },
-            Options {
-                medium: Color::new(0.1, 0.2, 0.4),
-                ..Options::default()
-            },
-            Options {
-                direct_visible: false,
-                ..Options::default()
-            },
-        ];
-        for options in variants {
-            assert_same_both_ways(&mut scene, set, &options, 200, |t| {
-                let mut colors = Vec::new();
-                floor_grid(30, |aim| {
-                    let org = Vec3::new(0.05, -0.02, 1.3);
-                    colors.push(t.radiance_within(org, (aim - org).normalize(), 0.0).color);
-                    colors.push(t.irradiance(aim + Vec3::new(0.0, 0.0, 0.01), Vec3::Z).color);
-                });
-                colors
-            });
+        for options in lamp_variants() {
+            assert_same_both_ways(&mut scene, set, &options, 200, floor_and_irradiance);
         }
     }
 
