@@ -576,6 +576,12 @@ impl Bvh {
     /// them), so they visit the same slots in the same order.
     #[inline(always)]
     pub fn traverse(&self, ray: &Ray, limit: f64, visit: impl FnMut(u32) -> f64) {
+        self.traverse_prepared(&Prepared::of(ray), limit, visit)
+    }
+
+    /// [`Bvh::traverse`] for a ray prepared beforehand ([`Prepared::of`]).
+    #[inline(always)]
+    pub fn traverse_prepared(&self, ray: &Prepared, limit: f64, visit: impl FnMut(u32) -> f64) {
         #[cfg(target_arch = "x86_64")]
         if simd::avx2() {
             // SAFETY: the processor has the features `walk_avx2` is compiled for.
@@ -587,17 +593,22 @@ impl Bvh {
     /// [`Bvh::walk`] compiled for AVX2 (and the bit instructions that come with it).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,avx2,bmi1,bmi2,lzcnt,popcnt")]
-    fn walk_avx2(&self, ray: &Ray, limit: f64, visit: impl FnMut(u32) -> f64) {
+    fn walk_avx2(&self, ray: &Prepared, limit: f64, visit: impl FnMut(u32) -> f64) {
         self.walk::<lanes::Avx2>(ray, limit, visit)
     }
 
     /// [`Bvh::traverse`]'s walk, for whichever instruction set it is inlined into.
     #[inline(always)]
-    fn walk<L: lanes::Lanes>(&self, ray: &Ray, mut limit: f64, mut visit: impl FnMut(u32) -> f64) {
+    fn walk<L: lanes::Lanes>(
+        &self,
+        ray: &Prepared,
+        mut limit: f64,
+        mut visit: impl FnMut(u32) -> f64,
+    ) {
         if self.order.is_empty() {
             return;
         }
-        let s = Slabs::new(ray);
+        let s = &ray.0;
         let far = self.nodes.len() > PREFETCH_NODES;
         let mut limit32 = f32_up(limit);
         // An entry computed beyond this cannot be exactly before `limit`.
@@ -614,7 +625,7 @@ impl Bvh {
             _ => &self.root,
         };
         loop {
-            let (t0, hits) = L::entries(&s, node, limit32);
+            let (t0, hits) = L::entries(s, node, limit32);
             // Start fetching every interior child entered at once, so that their
             // misses overlap instead of coming one after another as they are visited
             // (a tree small enough to stay in cache needs no such help).
@@ -984,7 +995,8 @@ mod tests {
     /// visit the same slots in the same order.
     fn walks(bvh: &Bvh, ray: &Ray, limit: f64, visit: impl Fn(u32) -> f64) -> Vec<u32> {
         let mut portable = Vec::new();
-        bvh.walk::<lanes::Portable>(ray, limit, |slot| {
+        let prepared = Prepared::of(ray);
+        bvh.walk::<lanes::Portable>(&prepared, limit, |slot| {
             portable.push(slot);
             visit(slot)
         });
@@ -993,7 +1005,7 @@ mod tests {
             let mut avx = Vec::new();
             // SAFETY: the processor has AVX2.
             unsafe {
-                bvh.walk_avx2(ray, limit, |slot| {
+                bvh.walk_avx2(&prepared, limit, |slot| {
                     avx.push(slot);
                     visit(slot)
                 })

@@ -436,11 +436,31 @@ impl<'a> Tracer<'a> {
     /// [`Tracer::radiance_within`] for primary ray number `index` (its random choices
     /// derive from the index alone).
     pub fn radiance_seeded(&self, org: Vec3, dir: Vec3, max_distance: f64, index: u64) -> RayState {
+        self.radiance_prepared(
+            org,
+            dir,
+            max_distance,
+            index,
+            &Prepared::of(&Ray::new(org, dir)),
+        )
+    }
+
+    /// [`Tracer::radiance_seeded`] with the ray's slab values prepared beforehand
+    /// (`Prepared::of(&Ray::new(org, dir))`): a caller tracing many rays prepares the
+    /// next while this one is traced, and its divisions overlap this ray's work.
+    pub fn radiance_prepared(
+        &self,
+        org: Vec3,
+        dir: Vec3,
+        max_distance: f64,
+        index: u64,
+        prepared: &Prepared,
+    ) -> RayState {
         let mut r = RayState::primary(org, dir);
         r.max_distance = max_distance;
         r.extinction = self.options.medium;
         r.seed = crate::random::primary_seed(index);
-        self.trace(&mut r);
+        self.trace_prepared(&mut r, Some(prepared));
         r
     }
 
@@ -466,12 +486,23 @@ impl<'a> Tracer<'a> {
 
     /// Radiance's `raytrace`.
     pub fn trace(&self, r: &mut RayState) {
+        self.trace_prepared(r, None);
+    }
+
+    /// [`Tracer::trace`], with `r`'s slab values when they were prepared beforehand.
+    #[inline(always)]
+    fn trace_prepared(&self, r: &mut RayState, prepared: Option<&Prepared>) {
         let limit = if r.max_distance > FTINY {
             r.max_distance
         } else {
             f64::INFINITY
         };
-        if let Some(c) = self.nearest(&Ray::new(r.org, r.dir), limit, f64::NEG_INFINITY, None) {
+        let ray = Ray::new(r.org, r.dir);
+        let found = match prepared {
+            Some(p) => self.nearest_prepared(&ray, p, limit, f64::NEG_INFINITY, None),
+            None => self.nearest(&ray, limit, f64::NEG_INFINITY, None),
+        };
+        if let Some(c) = found {
             r.hit = Target::Object(ObjectId(c.object));
             r.length = c.t;
             r.point = r.org + r.dir * c.t;
@@ -671,40 +702,54 @@ impl<'a> Tracer<'a> {
         settle: f64,
         known: Option<(u32, ShapeHit)>,
     ) -> Option<Candidate> {
+        self.nearest_prepared(ray, &Prepared::of(ray), limit, settle, known)
+    }
+
+    /// [`Tracer::nearest`] with `ray`'s slab values prepared beforehand.
+    fn nearest_prepared(
+        &self,
+        ray: &Ray,
+        prepared: &Prepared,
+        limit: f64,
+        settle: f64,
+        known: Option<(u32, ShapeHit)>,
+    ) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
         let scene = self.scene;
-        scene.bvh.traverse(ray, limit + FTINY, |slot| {
-            // Farther hits are rejected whatever they are (`rejects`): the shape need
-            // not finish testing them.
-            let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
-            let found = match known {
-                // `intersect`'s answer: the same hit unless beyond `tmax`.
-                Some((o, h)) if scene.surfaces.object_at(slot) == Some(o) => {
-                    (h.t <= tmax).then_some((o, h))
-                }
-                _ => scene.surfaces.intersect(slot, &scene.objects, ray, tmax),
-            };
-            if let Some((object, h)) = found
-                && h.t <= limit + FTINY
-            {
-                let cand = Candidate {
-                    object,
-                    t: h.t,
-                    normal: h.normal,
-                    rod: h.rod,
+        scene
+            .bvh
+            .traverse_prepared(prepared, limit + FTINY, |slot| {
+                // Farther hits are rejected whatever they are (`rejects`): the shape need
+                // not finish testing them.
+                let tmax = best.map_or(limit + FTINY, |b| b.t + FTINY);
+                let found = match known {
+                    // `intersect`'s answer: the same hit unless beyond `tmax`.
+                    Some((o, h)) if scene.surfaces.object_at(slot) == Some(o) => {
+                        (h.t <= tmax).then_some((o, h))
+                    }
+                    _ => scene.surfaces.intersect(slot, &scene.objects, ray, tmax),
                 };
-                if !self.rejects(best.as_ref(), &cand) {
-                    best = Some(cand);
-                    // Shading the hit reads its `HitInfo`: in a large scene a miss,
-                    // started here while traversal goes on.
-                    scene.prefetch_hit_info(object);
-                    if cand.t < settle {
-                        return -1.0;
+                if let Some((object, h)) = found
+                    && h.t <= limit + FTINY
+                {
+                    let cand = Candidate {
+                        object,
+                        t: h.t,
+                        normal: h.normal,
+                        rod: h.rod,
+                    };
+                    if !self.rejects(best.as_ref(), &cand) {
+                        best = Some(cand);
+                        // Shading the hit reads its `HitInfo`: in a large scene a miss,
+                        // started here while traversal goes on.
+                        scene.prefetch_hit_info(object);
+                        if cand.t < settle {
+                            return -1.0;
+                        }
                     }
                 }
-            }
-            best.map_or(limit + FTINY, |b| b.t + FTINY)
-        });
+                best.map_or(limit + FTINY, |b| b.t + FTINY)
+            });
         best
     }
 

@@ -13,7 +13,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use radc_lang::Severity;
+use radc_renderer::bvh::Prepared;
 use radc_renderer::math::{Bounds, Vec3, normalize};
+use radc_renderer::ray::Ray;
 use radc_renderer::ray_order::{self, RayOrder};
 use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
@@ -553,8 +555,14 @@ impl Chunk {
         self.text.clear();
         self.ends.clear();
         self.last = None;
-        for (i, (org, dir)) in rays {
-            let r = evaluate(tracer, org, dir, a, index + u64::from(i));
+        // Each ray is made ready (its direction normalized, its slab values computed)
+        // before the one ahead of it is traced: the square root and divisions that
+        // start a ray then overlap the previous ray's work instead of stalling it.
+        let mut rays = rays.map(|(i, (org, dir))| (i, Primary::new(org, dir, a)));
+        let mut next = rays.next();
+        while let Some((i, ray)) = next {
+            next = rays.next();
+            let r = ray.evaluate(tracer, a, index + u64::from(i));
             write_ray(&mut self.text, &r, scene, a);
             self.ends.push(self.text.len as u32);
             if i == last {
@@ -616,14 +624,39 @@ impl OutBuf {
     }
 }
 
-fn evaluate(tracer: &Tracer<'_>, org: Vec3, mut dir: Vec3, a: &Args, index: u64) -> RayState {
-    let length = normalize(&mut dir);
-    if a.irradiance {
-        tracer.irradiance_seeded(org, dir, index)
-    } else {
-        // -ld: the direction's length is how far the ray may go.
-        let max = if a.limit_distance { length } else { 0.0 };
-        tracer.radiance_seeded(org, dir, max, index)
+/// An input ray made ready to trace: its direction normalized, with the length it had
+/// (`-ld`), and its slab values ([`Prepared`]) unless `-I` makes it no ray.
+struct Primary {
+    org: Vec3,
+    dir: Vec3,
+    length: f64,
+    prepared: Option<Prepared>,
+}
+
+impl Primary {
+    #[inline(always)]
+    fn new(org: Vec3, mut dir: Vec3, a: &Args) -> Primary {
+        let length = normalize(&mut dir);
+        let prepared = (!a.irradiance).then(|| Prepared::of(&Ray::new(org, dir)));
+        Primary {
+            org,
+            dir,
+            length,
+            prepared,
+        }
+    }
+
+    #[inline(always)]
+    fn evaluate(&self, tracer: &Tracer<'_>, a: &Args, index: u64) -> RayState {
+        let (org, dir) = (self.org, self.dir);
+        match &self.prepared {
+            Some(prepared) => {
+                // -ld: the direction's length is how far the ray may go.
+                let max = if a.limit_distance { self.length } else { 0.0 };
+                tracer.radiance_prepared(org, dir, max, index, prepared)
+            }
+            None => tracer.irradiance_seeded(org, dir, index),
+        }
     }
 }
 
