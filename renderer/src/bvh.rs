@@ -216,6 +216,15 @@ impl Prepared {
     pub fn of(ray: &Ray) -> Prepared {
         Prepared(Slabs::new(ray))
     }
+
+    /// `prepared` when the caller has it, else `ray`'s own.
+    #[inline(always)]
+    pub fn given_or_of(prepared: Option<&Prepared>, ray: &Ray) -> Prepared {
+        match prepared {
+            Some(p) => *p,
+            None => Prepared::of(ray),
+        }
+    }
 }
 
 impl Slabs {

@@ -498,11 +498,8 @@ impl<'a> Tracer<'a> {
             f64::INFINITY
         };
         let ray = Ray::new(r.org, r.dir);
-        let found = match prepared {
-            Some(p) => self.nearest_prepared(&ray, p, limit, f64::NEG_INFINITY, None),
-            None => self.nearest(&ray, limit, f64::NEG_INFINITY, None),
-        };
-        if let Some(c) = found {
+        let prepared = Prepared::given_or_of(prepared, &ray);
+        if let Some(c) = self.nearest_prepared(&ray, &prepared, limit, f64::NEG_INFINITY, None) {
             r.hit = Target::Object(ObjectId(c.object));
             r.length = c.t;
             r.point = r.org + r.dir * c.t;
@@ -860,6 +857,8 @@ impl<'a> Tracer<'a> {
     /// different samples overlap, where between shadow walks each would stall alone.
     pub fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
         if let Some(lamps) = &self.scene.lamps
+            // `lamps` was derived for a scene opaque to object shadows; checked again
+            // for callers (tests) that change the flag afterwards.
             && self.scene.opaque_to_object_shadows
             // As the general path's jitter test: NaN jitters nothing either.
             && (self.options.source_jitter <= 0.0 || self.options.source_jitter.is_nan())
@@ -1153,10 +1152,7 @@ impl<'a> Tracer<'a> {
         let blocking = settle - FTINY;
         let mut unsure = false;
         let skip = [scene.surfaces.slot_of(target), walk.from];
-        let prepared = match walk.prepared {
-            Some(p) => *p,
-            None => Prepared::of(ray),
-        };
+        let prepared = Prepared::given_or_of(walk.prepared, ray);
         let blocked = scene.bvh.any_prepared(&prepared, tmax, skip, |slot| {
             if scene.surfaces.object_at(slot) == Some(target) {
                 return false;

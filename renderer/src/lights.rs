@@ -8,6 +8,8 @@
 
 use crate::materials::light::Spot;
 use crate::math::{FHUGE, FTINY, Vec3, normalize, perpendicular};
+use crate::scene::Object;
+use crate::shapes::{PackedSphere, Shape};
 use crate::solid_angle::DiskFrame;
 
 /// Radiance's `MAXSPART`: partitions per source, and the unit of partition coordinates.
@@ -77,12 +79,12 @@ pub struct Lamp {
     pub radius: f64,
     /// The object the source is.
     pub target: u32,
-    pub sphere: crate::shapes::PackedSphere,
+    pub sphere: PackedSphere,
 }
 
 impl Lamp {
     /// `source` as a lamp, when it is one, its surface a sphere among `objects`.
-    pub fn of(source: &Source, objects: &[crate::scene::Object]) -> Option<Lamp> {
+    pub fn of(source: &Source, objects: &[Object]) -> Option<Lamp> {
         let (SourceShape::Sphere { center, radius }, SourceTarget::Object(target)) =
             (&source.shape, source.target)
         else {
@@ -95,14 +97,14 @@ impl Lamp {
         {
             return None;
         }
-        let crate::shapes::Shape::Sphere(s) = &objects.get(target as usize)?.shape else {
+        let Shape::Sphere(s) = &objects.get(target as usize)?.shape else {
             return None;
         };
         Some(Lamp {
             center: *center,
             radius: *radius,
             target,
-            sphere: crate::shapes::PackedSphere::of(s),
+            sphere: PackedSphere::of(s),
         })
     }
 
