@@ -22,4 +22,4 @@ pub mod tonemap;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};
-pub use scene::{Scene, Unsupported};
+pub use scene::{RendererSupport, Scene, Unsupported};
