@@ -17,9 +17,6 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The command that installs the oracle, as the skip messages print it.
-pub const INSTALL: &str = "bash tests/oracle/install.sh";
-
 /// The variable that turns every skip into a failure (`.ci/run` sets it to `1`).
 pub const REQUIRE: &str = "RADC_REQUIRE_ORACLE";
 
@@ -56,40 +53,76 @@ pub fn required() -> bool {
     std::env::var_os(REQUIRE).is_some_and(|v| v == "1")
 }
 
+/// What a skip message says each missing thing is needed for.
+const NEEDS_ORACLE: &str = "needs the oracle: bash tests/oracle/install.sh";
+const NEEDS_CORPUS: &str =
+    "needs the shared corpus: Radiance's test scenes in ../shared/corpus/radiance";
+
 /// The oracle's library for `test`, or `None` after a visible skip; panics when it is
 /// missing and [`required`].
 pub fn library_or_skip(test: &str) -> Option<PathBuf> {
-    library().or_else(|| skip(test, &format!("needs the oracle: {INSTALL}")))
+    library().or_else(|| skip(test, NEEDS_ORACLE))
 }
 
 /// The shared corpus for `test`, or `None` after a visible skip; panics when it is missing
 /// and [`required`].
 pub fn shared_corpus_or_skip(test: &str) -> Option<PathBuf> {
-    shared_corpus().or_else(|| {
-        skip(
-            test,
-            "needs the shared corpus: Radiance's test scenes in ../shared/corpus/radiance",
-        )
-    })
+    shared_corpus().or_else(|| skip(test, NEEDS_CORPUS))
 }
 
 /// Both the shared corpus and the oracle's library, for a test that compares corpus
-/// scenes naming library files; `None` after a visible skip naming what is missing.
+/// scenes naming library files; `None` after a visible skip naming all that is missing.
 pub fn shared_corpus_and_library_or_skip(test: &str) -> Option<(PathBuf, PathBuf)> {
-    let corpus = shared_corpus_or_skip(test)?;
-    let library = library_or_skip(test)?;
-    Some((corpus, library))
+    match (shared_corpus(), library()) {
+        (Some(corpus), Some(library)) => Some((corpus, library)),
+        (None, Some(_)) => skip(test, NEEDS_CORPUS),
+        (Some(_), None) => skip(test, NEEDS_ORACLE),
+        (None, None) => skip(test, &format!("{NEEDS_CORPUS}; {NEEDS_ORACLE}")),
+    }
 }
 
 /// Reports a skip: a failure under `RADC_REQUIRE_ORACLE=1`, else one line written straight
 /// to the standard error stream. `eprintln!` would not do: libtest captures it and shows it
 /// only for failing tests, and a skip must be seen on a passing run.
 fn skip<T>(test: &str, why: &str) -> Option<T> {
+    skip_unless(required(), test, why, &mut std::io::stderr().lock())
+}
+
+/// [`skip`] with the requirement and the stream given, so that both can be tested.
+fn skip_unless<T>(required: bool, test: &str, why: &str, out: &mut dyn Write) -> Option<T> {
     assert!(
-        !required(),
-        "{test} {why}; it is missing and {REQUIRE}=1 forbids skipping"
+        !required,
+        "{test} {why}: not found here, and {REQUIRE}=1 forbids skipping it"
     );
-    let line = format!("SKIPPED ({why}): {test}\n");
-    let _ = std::io::stderr().lock().write_all(line.as_bytes());
+    let _ = writeln!(out, "SKIPPED ({why}): {test}");
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_skip_says_what_is_needed_and_by_which_test() {
+        let mut out = Vec::new();
+        assert_eq!(
+            skip_unless::<PathBuf>(false, "t", NEEDS_ORACLE, &mut out),
+            None
+        );
+        assert_eq!(
+            String::from_utf8_lossy(&out),
+            "SKIPPED (needs the oracle: bash tests/oracle/install.sh): t\n"
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "t needs the oracle: bash tests/oracle/install.sh: not found here")]
+    fn a_skip_fails_the_test_when_required() {
+        let _ = skip_unless::<PathBuf>(true, "t", NEEDS_ORACLE, &mut Vec::new());
+    }
+
+    #[test]
+    fn the_workspace_is_two_folders_up() {
+        assert!(workspace().join("tests/oracle/install.sh").is_file());
+    }
 }
