@@ -53,8 +53,9 @@ pub fn required() -> bool {
     std::env::var_os(REQUIRE).is_some_and(|v| v == "1")
 }
 
-/// What a skip message says each missing thing is needed for.
+/// What a skip message says a test needs when the oracle is missing: how to install it.
 const NEEDS_ORACLE: &str = "needs the oracle: bash tests/oracle/install.sh";
+/// The same when the shared corpus is missing: where it is expected.
 const NEEDS_CORPUS: &str =
     "needs the shared corpus: Radiance's test scenes in ../shared/corpus/radiance";
 
