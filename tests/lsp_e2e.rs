@@ -569,20 +569,6 @@ fn never_runs_commands_and_survives_nonsense() {
     client.shutdown();
 }
 
-/// A `file://` URI as editors send it: bytes other than unreserved ones and `/`
-/// percent-encoded (the corpus has folders with spaces in their names).
-fn file_uri(path: &std::path::Path) -> String {
-    let mut uri = String::from("file://");
-    for &b in path.to_string_lossy().as_bytes() {
-        if b.is_ascii_alphanumeric() || b"/-._~".contains(&b) {
-            uri.push(b as char);
-        } else {
-            uri.push_str(&format!("%{b:02X}"));
-        }
-    }
-    uri
-}
-
 /// [`codes`] without W0307: the tests of function files use patterns, which the
 /// renderer does not run yet; what they test is what the checker finds.
 fn checked_codes(published: &Value) -> Vec<String> {
