@@ -9,7 +9,14 @@ use crate::{Failure, GenError, Host};
 
 /// The programs radc runs itself.
 pub const BUILTINS: &[&str] = &[
-    "genbox", "genprism", "genrev", "gensky", "gensurf", "genworm", "xform",
+    "genbox",
+    "gendaylit",
+    "genprism",
+    "genrev",
+    "gensky",
+    "gensurf",
+    "genworm",
+    "xform",
 ];
 
 /// The output of `command` (the text after `!`) if it is a plain invocation of a
@@ -58,6 +65,7 @@ pub(crate) fn run_builtin_at(
         let whole = |r: Result<String, GenError>| r.map_err(|e| Failure::new(name, e));
         let result = match name {
             "genbox" => whole(crate::genbox(args)),
+            "gendaylit" => crate::gendaylit(args, &mut stage_host),
             "genprism" => whole(crate::genprism(args, &mut stage_host)),
             "genrev" => crate::genrev(args, &mut stage_host),
             "gensky" => whole(crate::gensky(args, &mut stage_host)),
