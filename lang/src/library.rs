@@ -87,6 +87,30 @@ mod tests {
         assert_eq!(defined, listed_sorted);
     }
 
+    /// In a renderer environment rayinit.cal's names are definitions, so a function
+    /// file's constants built on them fold as Radiance folds them while loading.
+    #[test]
+    fn rayinit_names_are_definitions_in_the_renderer() {
+        let mut m = Module::new(&Env::renderer());
+        let text = "c : frac(2.75) + linterp(.5, 0, 4) + abs(-1) + and(1, -1) + DEGREE*180;";
+        assert!(m.load_function_file(FileId(0), "t.cal", text).is_empty());
+        let c = m
+            .lookup("c")
+            .and_then(|s| m.current_def(s))
+            .map(|d| m.def(d));
+        let value = c.and_then(|d| d.body.as_num().or(d.parse_time_value));
+        assert_eq!(value, Some(0.75 + 2.0 + 1.0 - 1.0 + std::f64::consts::PI));
+        for name in ["A1", "noise3a", "or", "Idx"] {
+            let sym = m.lookup(name).expect(name);
+            assert!(!m.symbol(sym).stack.is_empty(), "{name} has a definition");
+            assert!(m.host_name(sym).is_none(), "{name} is not a host name");
+        }
+        assert!(
+            !m.known_names().iter().any(|n| n.ends_with("`rayinit")),
+            "helpers are never suggested"
+        );
+    }
+
     #[test]
     fn only_plain_file_names_are_built_in() {
         assert!(builtin("skybright.cal").is_some());
