@@ -366,7 +366,10 @@ fn skies_check_clean_without_radiance_installed() {
     let glow = "skyfunc glow skyglow 0 0 4 1 1 1 0\nskyglow source sky 0 0 4 0 0 1 180\n";
     for (name, command) in [
         ("gensky.rad", "!gensky 3 21 12 -a 40 -o 105 -m 105"),
-        ("gendaylit.rad", "!gendaylit 6 21 12 -a 40 -o 105 -m 105 -W 800 120"),
+        (
+            "gendaylit.rad",
+            "!gendaylit 6 21 12 -a 40 -o 105 -m 105 -W 800 120",
+        ),
         ("surf.rad", "!gensurf paint s 's' 't' 's*t' 3 3 -s"),
         ("rev.rad", "!genrev paint r 't' '1+t*t' 4 -s"),
     ] {
