@@ -372,3 +372,52 @@ fn include_cycles_through_xform_are_errors_on_the_line() {
         assert_eq!(cycle[0]["line"], line);
     }
 }
+
+/// A sky from gensky or gendaylit names skybright.cal or perezlum.cal; with no Radiance
+/// installed (no RAYPATH) radc's built-in copies answer, so the scene is clean.
+#[test]
+fn skies_check_clean_without_radiance_installed() {
+    let dir = tempfile::tempdir().unwrap();
+    let glow = "skyfunc glow skyglow 0 0 4 1 1 1 0\nskyglow source sky 0 0 4 0 0 1 180\n";
+    for (name, command) in [
+        ("gensky.rad", "!gensky 3 21 12 -a 40 -o 105 -m 105"),
+        (
+            "gendaylit.rad",
+            "!gendaylit 6 21 12 -a 40 -o 105 -m 105 -W 800 120",
+        ),
+        ("surf.rad", "!gensurf paint s 's' 't' 's*t' 3 3 -s"),
+        ("rev.rad", "!genrev paint r 't' '1+t*t' 4 -s"),
+    ] {
+        let text = if name.starts_with("gen") {
+            format!("{command}\n{glow}")
+        } else {
+            format!("{MATERIAL}{command}\n")
+        };
+        write(dir.path(), name, &text);
+        let out = radc(&["check", "--deny", "warnings", name], dir.path());
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+    }
+}
+
+/// As in Radiance, a file of a library name found beside the scene wins over radc's
+/// built-in text: here a skybright.cal without `skybr`.
+#[test]
+fn a_library_file_beside_the_scene_replaces_the_built_in_one() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "skybright.cal", "other = 1;\n");
+    write(
+        dir.path(),
+        "sky.rad",
+        "void brightfunc skyfunc 2 skybr skybright.cal 0 7 1 1 1 1 0 0 1\n\
+         skyfunc glow skyglow 0 0 4 1 1 1 0\nskyglow source sky 0 0 4 0 0 1 180\n",
+    );
+    let out = radc(&["check", "sky.rad"], dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("E0601"), "{stdout}");
+}

@@ -9,7 +9,14 @@ use crate::{Failure, GenError, Host};
 
 /// The programs radc runs itself.
 pub const BUILTINS: &[&str] = &[
-    "genbox", "genprism", "genrev", "gensky", "gensurf", "genworm", "xform",
+    "genbox",
+    "gendaylit",
+    "genprism",
+    "genrev",
+    "gensky",
+    "gensurf",
+    "genworm",
+    "xform",
 ];
 
 /// The output of `command` (the text after `!`) if it is a plain invocation of a
@@ -58,6 +65,7 @@ pub(crate) fn run_builtin_at(
         let whole = |r: Result<String, GenError>| r.map_err(|e| Failure::new(name, e));
         let result = match name {
             "genbox" => whole(crate::genbox(args)),
+            "gendaylit" => crate::gendaylit(args, &mut stage_host),
             "genprism" => whole(crate::genprism(args, &mut stage_host)),
             "genrev" => crate::genrev(args, &mut stage_host),
             "gensky" => whole(crate::gensky(args, &mut stage_host)),
@@ -172,6 +180,12 @@ mod tests {
         assert!(matches!(out, Some(Ok(text)) if text.starts_with("# genbox m b 1 1 1\n")));
         let out = run_builtin("/usr/local/bin/gensky -ang 45 0", &mut NoHost);
         assert!(matches!(out, Some(Ok(text)) if text.contains("skybright.cal")));
+        let out = run_builtin("gendaylit -ang 45 0 -W 600 100", &mut NoHost);
+        assert!(matches!(out, Some(Ok(text)) if text.contains("2 skybright perezlum.cal")));
+        assert!(matches!(
+            run_builtin("gendaylit 6 21 12 -i -5 -W 600 100", &mut NoHost),
+            Some(Err(f)) if f.partial.starts_with("# gendaylit 6 21 12")
+        ));
         assert!(run_builtin("cat scene.rad", &mut NoHost).is_none());
         assert!(run_builtin("genbox m b 1 1 1 | sort", &mut NoHost).is_none());
         assert!(run_builtin("genbox m b 1 1 1 > out.rad", &mut NoHost).is_none());

@@ -1,5 +1,5 @@
 //! Radiance's scene generators, reimplemented to print exactly what the C programs
-//! print: `genbox`, `genprism`, `genrev`, `gensky`, `gensurf`, `genworm` and
+//! print: `genbox`, `gendaylit`, `genprism`, `genrev`, `gensky`, `gensurf`, `genworm` and
 //! `xform` (`src/gen/*.c` in Radiance). The curves of genrev, gensurf
 //! and genworm are calcomp, evaluated by `radc_lang::cal`; deep calcomp recursion
 //! needs a deep stack, so callers run those on a thread with one (as `radc genworm`
@@ -19,6 +19,7 @@ pub mod command;
 mod curves;
 pub mod expansion;
 pub mod genbox;
+pub mod gendaylit;
 pub mod genprism;
 pub mod genrev;
 pub mod gensky;
@@ -26,11 +27,13 @@ pub mod gensurf;
 pub mod genworm;
 mod mesh;
 pub mod printf;
+mod sun;
 mod wavefront;
 pub mod words;
 pub mod xform;
 
 pub use genbox::genbox;
+pub use gendaylit::gendaylit;
 pub use genprism::genprism;
 pub use genrev::genrev;
 pub use gensky::gensky;
@@ -177,7 +180,7 @@ pub trait Host {
         Err(Failure::new(
             "xform",
             GenError::Host(format!(
-                "not running command \"{command}\": radc builds in genbox, genprism, genrev, \
+                "not running command \"{command}\": radc builds in genbox, gendaylit, genprism, genrev, \
                  gensky, gensurf, genworm and xform"
             )),
         ))

@@ -8,6 +8,7 @@ pub mod cal;
 pub mod datafile;
 pub mod db;
 pub mod diagnostic;
+pub mod library;
 pub mod scene;
 pub mod schema;
 pub mod source;

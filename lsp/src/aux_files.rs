@@ -81,16 +81,18 @@ impl DiskAuxFiles {
 }
 
 impl AuxFiles for DiskAuxFiles {
-    fn exists(&self, name: &str, _kind: FileKind, scene_path: &Path) -> bool {
-        self.find(name, scene_path).is_some()
+    fn exists(&self, name: &str, kind: FileKind, scene_path: &Path) -> bool {
+        self.find(name, scene_path).is_some() || builtin(name, kind).is_some()
     }
 
     fn locate(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<PathBuf> {
         self.find(name, scene_path)
     }
 
-    fn read(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<String> {
-        let path = self.find(name, scene_path)?;
+    fn read(&self, name: &str, kind: FileKind, scene_path: &Path) -> Option<String> {
+        let Some(path) = self.find(name, scene_path) else {
+            return builtin(name, kind).map(str::to_string);
+        };
         if let Some(text) = self.overlay.get(&path) {
             return Some(text);
         }
@@ -104,12 +106,15 @@ impl AuxFiles for DiskAuxFiles {
     fn read_head(
         &self,
         name: &str,
-        _kind: FileKind,
+        kind: FileKind,
         scene_path: &Path,
         max: usize,
     ) -> Option<Vec<u8>> {
         use std::io::Read;
-        let file = std::fs::File::open(self.find(name, scene_path)?).ok()?;
+        let Some(path) = self.find(name, scene_path) else {
+            return builtin(name, kind).map(|t| t.bytes().take(max).collect());
+        };
+        let file = std::fs::File::open(path).ok()?;
         let mut head = Vec::with_capacity(max);
         file.take(max as u64).read_to_end(&mut head).ok()?;
         Some(head)
@@ -136,7 +141,7 @@ impl AuxFiles for DiskAuxFiles {
                 other => Err(other),
             },
             None => Err(Expansion::NotExpanded {
-                reason: "radc builds in genbox, genprism, genrev, gensky, gensurf, genworm and \
+                reason: "radc builds in genbox, gendaylit, genprism, genrev, gensky, gensurf, genworm and \
                          xform; the language server never runs other commands"
                     .into(),
             }),
@@ -144,8 +149,17 @@ impl AuxFiles for DiskAuxFiles {
     }
 }
 
+/// radc's built-in text of a library function file, for a name no file on the search
+/// path answers (a user's file of that name wins, as in Radiance). Editors have no
+/// file to open for it, so `locate` does not report it.
+fn builtin(name: &str, kind: FileKind) -> Option<&'static str> {
+    (kind == FileKind::Cal)
+        .then(|| radc_lang::library::builtin(name))
+        .flatten()
+}
+
 /// Files for generators run from a scene: relative to the scene's folder, then
-/// RAYPATH. Commands nested in files xform reads are refused (the trait's default).
+/// RAYPATH, then radc's built-in function files. Commands nested in files xform reads are refused (the trait's default).
 struct GeneratorHost<'a> {
     dir: PathBuf,
     raypath: &'a [PathBuf],
@@ -163,6 +177,9 @@ impl Host for GeneratorHost<'_> {
             if let Ok(bytes) = std::fs::read(c) {
                 return Ok(String::from_utf8_lossy(&bytes).into_owned());
             }
+        }
+        if let Some(text) = radc_lang::library::builtin(path) {
+            return Ok(text.to_string());
         }
         Err(GenError::Host(format!("cannot find file \"{path}\"")))
     }

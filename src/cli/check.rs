@@ -289,12 +289,27 @@ impl SearchPath<'_> {
 /// Auxiliary files larger than this are not read for content checks.
 const MAX_AUX_FILE: u64 = 64 << 20;
 
+impl SearchPath<'_> {
+    /// radc's own text of a library function file, used only when no file of that
+    /// name is on the search path (as Radiance finds its library on RAYPATH, and a
+    /// user's copy there wins).
+    fn builtin(&self, name: &str, kind: FileKind, from: FileId) -> Option<&'static str> {
+        if kind != FileKind::Cal || self.find(name, from).is_some() {
+            return None;
+        }
+        radc_lang::library::builtin(name)
+    }
+}
+
 impl FileLookup for SearchPath<'_> {
-    fn exists(&self, name: &str, _kind: FileKind, from: FileId) -> bool {
-        self.find(name, from).is_some()
+    fn exists(&self, name: &str, kind: FileKind, from: FileId) -> bool {
+        self.find(name, from).is_some() || self.builtin(name, kind, from).is_some()
     }
 
-    fn read(&self, name: &str, _kind: FileKind, from: FileId) -> Option<String> {
+    fn read(&self, name: &str, kind: FileKind, from: FileId) -> Option<String> {
+        if let Some(text) = self.builtin(name, kind, from) {
+            return Some(text.to_string());
+        }
         let path = self.find(name, from)?;
         if std::fs::metadata(&path).ok()?.len() > MAX_AUX_FILE {
             return None;
@@ -304,6 +319,11 @@ impl FileLookup for SearchPath<'_> {
     }
 
     fn load(&self, name: &str, kind: FileKind, from: FileId) -> Option<(FileId, String)> {
+        if let Some(text) = self.builtin(name, kind, from) {
+            let shown = format!("{name} (built into radc)");
+            let id = self.pending.add(shown, text.to_string(), PathBuf::new());
+            return Some((id, text.to_string()));
+        }
         let text = self.read(name, kind, from)?;
         let dir = self
             .find(name, from)
@@ -312,8 +332,11 @@ impl FileLookup for SearchPath<'_> {
         Some((self.pending.add(name.to_string(), text.clone(), dir), text))
     }
 
-    fn read_head(&self, name: &str, _kind: FileKind, from: FileId, max: usize) -> Option<Vec<u8>> {
+    fn read_head(&self, name: &str, kind: FileKind, from: FileId, max: usize) -> Option<Vec<u8>> {
         use std::io::Read;
+        if let Some(text) = self.builtin(name, kind, from) {
+            return Some(text.bytes().take(max).collect());
+        }
         let file = std::fs::File::open(self.find(name, from)?).ok()?;
         let mut head = Vec::with_capacity(max);
         file.take(max as u64).read_to_end(&mut head).ok()?;

@@ -1,5 +1,5 @@
 //! How the CLI expands `!command` lines in scenes: Radiance's generators that radc
-//! builds in (genbox, genprism, genrev, gensky, gensurf, genworm, xform) run in-process; any other command runs through
+//! builds in (genbox, gendaylit, genprism, genrev, gensky, gensurf, genworm, xform) run in-process; any other command runs through
 //! `sh` only when the user passed `--allow-commands`, and is otherwise reported as not
 //! expanded. Expanded text becomes a source file of its own so diagnostics inside it
 //! can be shown against it.
@@ -105,7 +105,7 @@ impl<'a> Commands<'a> {
     fn shell(&self, command: &str, dir: &Path) -> Result<String, Expansion> {
         if !self.allow_commands {
             return Err(Expansion::NotExpanded {
-                reason: "radc builds in genbox, genprism, genrev, gensky, gensurf, genworm and \
+                reason: "radc builds in genbox, gendaylit, genprism, genrev, gensky, gensurf, genworm and \
                          xform; other commands run only with --allow-commands"
                     .into(),
             });
@@ -138,7 +138,8 @@ impl CommandExpander for Commands<'_> {
     }
 }
 
-/// Files for generators run from a scene: relative to the scene's folder, then RAYPATH.
+/// Files for generators run from a scene: relative to the scene's folder, then RAYPATH,
+/// then radc's built-in function files (`-f rayinit.cal` with no Radiance installed).
 struct SceneHost {
     dir: PathBuf,
     /// The previous pipeline stage's output.
@@ -158,6 +159,9 @@ impl Host for SceneHost {
             if let Ok(bytes) = std::fs::read(c) {
                 return Ok(String::from_utf8_lossy(&bytes).into_owned());
             }
+        }
+        if let Some(text) = radc_lang::library::builtin(path) {
+            return Ok(text.to_string());
         }
         Err(GenError::Host(format!("cannot find file \"{path}\"")))
     }

@@ -15,6 +15,11 @@ pub fn gensky(args: &[String]) -> ExitCode {
     finish("gensky", radc_generators::gensky(args, &mut host))
 }
 
+pub fn gendaylit(args: &[String]) -> ExitCode {
+    let mut host = FileHost::default();
+    report(radc_generators::gendaylit(args, &mut host))
+}
+
 pub fn genworm(args: &[String]) -> ExitCode {
     let args = args.to_vec();
     let result = with_deep_stack(
@@ -122,7 +127,7 @@ fn report(result: Result<String, Failure>) -> ExitCode {
 }
 
 /// Files from the file system, relative names also searched along RAYPATH as
-/// Radiance's `getpath()` does.
+/// Radiance's `getpath()` does; radc's built-in function files when none is found.
 #[derive(Default)]
 struct FileHost {
     allow_commands: bool,
@@ -139,6 +144,9 @@ impl Host for FileHost {
             if let Ok(bytes) = std::fs::read(c) {
                 return Ok(String::from_utf8_lossy(&bytes).into_owned());
             }
+        }
+        if let Some(text) = radc_lang::library::builtin(path) {
+            return Ok(text.to_string());
         }
         Err(GenError::Host(format!("cannot find file \"{path}\"")))
     }
@@ -161,7 +169,7 @@ impl Host for FileHost {
             return Err(Failure::new(
                 "xform",
                 GenError::Host(format!(
-                    "not running \"{command}\": radc builds in genbox, genprism, genrev, \
+                    "not running \"{command}\": radc builds in genbox, gendaylit, genprism, genrev, \
                      gensky, gensurf, genworm and xform (pass --allow-commands first to run \
                      other commands with sh)"
                 )),

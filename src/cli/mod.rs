@@ -73,6 +73,11 @@ const COMMANDS: &[Command] = &[
         run: generate::genbox,
     },
     Command {
+        name: "gendaylit",
+        summary: "generate a Perez all-weather sky and sun, as Radiance's gendaylit",
+        run: generate::gendaylit,
+    },
+    Command {
         name: "genprism",
         summary: "generate an extruded polygon, as Radiance's genprism",
         run: generate::genprism,

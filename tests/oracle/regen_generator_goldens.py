@@ -1,5 +1,5 @@
-"""Goldens for radc's generators: what real genbox, genprism, genrev, gensky, genworm and
-xform print.
+"""Goldens for radc's generators: what real genbox, gendaylit, genprism, genrev, gensky,
+genworm and xform print.
 
 Runs each case below with the oracle's programs (source tests/oracle/env.sh first, or
 let check_all.sh do it) in tests/data/generators/inputs/, and writes
@@ -196,6 +196,74 @@ CASES = [
     ("xform-nested-empty", "xform", "nested-empty.rad", None),
     ("xform-empty", "xform", "empty.rad", None),
     ("xform-only-comment", "xform", "only-comment.rad", None),
+    # gendaylit: each input type (-P -W -L -G -E), outputs -O 0/1/2, date and -ang forms,
+    # site options, the sun (-s +s) and its clamp, -i near sunrise and sunset, error
+    # skies (sun down, impossible values) and failures, colour (-C -CIE -l), -d, -w
+    ("gendaylit-perez-clear", "gendaylit", "-ang 60 0 -P 6.3 0.12", None),
+    ("gendaylit-perez-turbid", "gendaylit", "-ang 60 0 -P 3.2 0.24", None),
+    ("gendaylit-perez-overcast", "gendaylit", "-ang 60 0 -P 1 0.08", None),
+    ("gendaylit-perez-bright-overcast", "gendaylit", "3 2 15.25 -a 42 -o 108 -m 110 -P 1 0.35", None),
+    ("gendaylit-perez-first-bin", "gendaylit", "-ang 35 20 -P 1.05 0.3", None),
+    ("gendaylit-perez-delta-floor", "gendaylit", "-ang 35 20 -P 2 0.1", None),
+    ("gendaylit-perez-held", "gendaylit", "-ang 40 -30 -P 20 0.9", None),
+    ("gendaylit-perez-held-low", "gendaylit", "-ang 40 -30 -P 0.5 0.001", None),
+    ("gendaylit-perez-top", "gendaylit", "-ang 50 0 -P 12.01 0.2", None),
+    ("gendaylit-perez-top-solar", "gendaylit", "-ang 50 0 -P 12.01 0.2 -O 1", None),
+    ("gendaylit-positive-b", "gendaylit", "-ang 87 0 -P 5 0.6", None),
+    ("gendaylit-w-angles", "gendaylit", "-ang 60 0 -W 840 135", None),
+    ("gendaylit-w-date", "gendaylit", "6 21 12 -W 800 100", None),
+    ("gendaylit-w-solar-time", "gendaylit", "6 21 +14.5 -a 47 -o -8 -m -15 -W 600 150", None),
+    ("gendaylit-w-year", "gendaylit", "9 30 10 -y 2024 -a 48 -o -11 -m -15 -W 650 120", None),
+    ("gendaylit-w-year-solar", "gendaylit", "2 29 +9.25 -y 2020 -W 300 200", None),
+    ("gendaylit-w-south", "gendaylit", "12 21 11 -a -33.9 -o -18.4 -m -30 -W 900 90 -g 0.35", None),
+    ("gendaylit-w-negative", "gendaylit", "-ang 50 0 -W -10 100", None),
+    ("gendaylit-w-zero", "gendaylit", "-ang 50 0 -W 0 0", None),
+    ("gendaylit-w-above-solar-constant", "gendaylit", "-ang 50 0 -W 1400 100", None),
+    ("gendaylit-l", "gendaylit", "6 21 12 -L 80000 20000", None),
+    ("gendaylit-l-luminance", "gendaylit", "3 21 9 -L 50000 15000 -O 2", None),
+    ("gendaylit-l-solar", "gendaylit", "3 21 9 -L 50000 15000 -O 1", None),
+    ("gendaylit-l-overcast", "gendaylit", "11 5 13 -L 0 18000", None),
+    ("gendaylit-l-above-solar-constant", "gendaylit", "-ang 50 0 -L 130000 10000", None),
+    ("gendaylit-g", "gendaylit", "4 15 11 -G 500 120", None),
+    ("gendaylit-g-solar", "gendaylit", "4 15 11 -G 500 120 -O 1", None),
+    ("gendaylit-g-low-sun", "gendaylit", "-ang 3 100 -G 20 40", None),
+    ("gendaylit-g-sun-down", "gendaylit", "-ang -4 48 -G 935 314", None),
+    ("gendaylit-e-dull", "gendaylit", "12 21 12 -E 60", None),
+    ("gendaylit-e-mid", "gendaylit", "6 21 13 -E 600", None),
+    ("gendaylit-e-clear", "gendaylit", "6 21 12 -E 980", None),
+    ("gendaylit-e-above-s0", "gendaylit", "6 21 12 -E 1500", None),
+    ("gendaylit-e-sun-down", "gendaylit", "-ang -4 48 -E 300 -s", None),
+    ("gendaylit-no-sun", "gendaylit", "-ang 45 10 -W 600 100 -s", None),
+    ("gendaylit-plus-s", "gendaylit", "-ang 45 10 -W 600 100 -s +s", None),
+    ("gendaylit-cloudy-flag", "gendaylit", "-ang 89 0 -P 6 0.1 -c", None),
+    ("gendaylit-zenith-clamp", "gendaylit", "-ang 89 0 -P 6 0.1", None),
+    ("gendaylit-zenith-clamp-quiet", "gendaylit", "-ang 89 0 -P 6 0.1 -w", None),
+    ("gendaylit-sun-below", "gendaylit", "-ang -5 0 -P 3 0.2", None),
+    ("gendaylit-night", "gendaylit", "1 1 2 -W 100 100", None),
+    ("gendaylit-night-quiet", "gendaylit", "1 1 2 -W 100 100 -w", None),
+    ("gendaylit-interval-sunrise", "gendaylit", "6 21 4.9 -i 60 -W 20 30", None),
+    ("gendaylit-interval-sunset", "gendaylit", "6 21 19.4 -i 60 -W 20 30", None),
+    ("gendaylit-interval-midday", "gendaylit", "6 21 12 -i 30 -W 700 100", None),
+    ("gendaylit-interval-night", "gendaylit", "1 1 2 -i 60 -W 100 100", None),
+    ("gendaylit-meridian-warning", "gendaylit", "6 21 12 -o 10 -m 120 -W 600 100", None),
+    ("gendaylit-ground", "gendaylit", "5 5 15 -W 500 200 -g 0.5", None),
+    ("gendaylit-dew-point", "gendaylit", "7 7 10 -W 500 200 -d 20", None),
+    ("gendaylit-dew-point-out-of-range", "gendaylit", "7 7 10 -W 500 200 -d 50", None),
+    ("gendaylit-output-truncated", "gendaylit", "7 7 10 -W 500 200 -O 1.9", None),
+    ("gendaylit-color-clear", "gendaylit", "-ang 60 0 -P 6.3 0.12 -C", None),
+    ("gendaylit-color-cie", "gendaylit", "-ang 60 0 -P 6.3 0.12 -CIE -C", None),
+    ("gendaylit-color-locus", "gendaylit", "-ang 60 0 -P 1 0.2 -l 1 2 3 4 5 6 7 -C", None),
+    ("gendaylit-color-intermediate", "gendaylit", "-ang 60 0 -P 3 0.2 -C", None),
+    ("gendaylit-solar-radiance-option", "gendaylit", "-ang 60 0 -P 3 0.2 -R 100 -t 3 -b 5", None),
+    ("gendaylit-defaults", "gendaylit", "-defaults", None),
+    ("gendaylit-err-output", "gendaylit", "-ang 45 0 -P 3 0.2 -O 3", None),
+    ("gendaylit-err-interval", "gendaylit", "6 21 12 -i -5 -W 600 100", None),
+    ("gendaylit-err-month", "gendaylit", "13 1 12 -W 1 1", None),
+    ("gendaylit-err-day", "gendaylit", "1 32 12 -W 1 1", None),
+    ("gendaylit-err-hour", "gendaylit", "1 1 24 -W 1 1", None),
+    ("gendaylit-err-count", "gendaylit", "1 1", None),
+    ("gendaylit-err-option", "gendaylit", "6 21 12 -q", None),
+    ("gendaylit-err-bad-option", "gendaylit", "6 21 12 x", None),
     ("gensurf-err-usage", "gensurf", "m s 1 2", None),
     ("genrev-err-usage", "genrev", "m r t 1", None),
     ("genworm-err-usage", "genworm", "m w t t t", None),
@@ -220,8 +288,8 @@ def run(program, args, stdin_name):
 
 def random_invocation(rng):
     """A random but valid-looking invocation of one of the generators."""
-    program = rng.choice(["genbox", "genprism", "genrev", "gensky", "gensurf", "genworm",
-                          "xform"])
+    program = rng.choice(["genbox", "gendaylit", "genprism", "genrev", "gensky", "gensurf",
+                          "genworm", "xform"])
     if program == "genbox":
         size = [rng.uniform(0.05, 20) for _ in range(3)]
         args = ["m", "b"] + ["%.4g" % x for x in size]
@@ -276,6 +344,35 @@ def random_invocation(rng):
             args = ["m", "v", z, "1+" + curve(), str(rng.randint(1, 20))]
             if rng.random() < 0.4:
                 args.append("-s")
+    elif program == "gendaylit":
+        if rng.random() < 0.25:
+            args = ["-ang", "%.4g" % rng.uniform(-10, 95), "%.4g" % rng.uniform(-180, 180)]
+        else:
+            h = rng.uniform(0, 24)
+            args = [str(rng.randint(1, 12)), str(rng.randint(1, 31)),
+                    rng.choice(["%.2f" % h, "+%.1f" % h])]
+        kind = rng.choice("PWLGE")
+        if kind == "P":
+            args += ["-P", "%.4g" % rng.uniform(0.5, 13), "%.3g" % rng.uniform(0, 0.7)]
+        elif kind in "WG":
+            args += ["-" + kind, "%.4g" % rng.uniform(-50, 1100), "%.4g" % rng.uniform(-10, 500)]
+        elif kind == "L":
+            args += ["-L", "%.5g" % rng.uniform(-1000, 130000), "%.5g" % rng.uniform(-100, 60000)]
+        else:
+            args += ["-E", "%.4g" % rng.uniform(-10, 1200)]
+        for option in rng.sample(["-O", "-s", "+s", "-w", "-g", "-a", "-o", "-m", "-y", "-i",
+                                  "-d", "-C", "-c"], rng.randint(0, 4)):
+            value = {
+                "-O": lambda: str(rng.choice([0, 1, 2, 3])),
+                "-g": lambda: "%.3g" % rng.uniform(0, 1),
+                "-a": lambda: "%.4g" % rng.uniform(-60, 65),
+                "-o": lambda: "%.4g" % rng.uniform(-180, 180),
+                "-m": lambda: str(rng.choice([-120, -30, 0, 15, 75, 120])),
+                "-y": lambda: str(rng.randint(1950, 2050)),
+                "-i": lambda: str(rng.choice([-5, 15.5, 30, 60])),
+                "-d": lambda: "%.3g" % rng.uniform(-50, 50),
+            }.get(option)
+            args += [option, value()] if value else [option]
     elif program == "gensky":
         if rng.random() < 0.2:
             args = ["-ang", "%.4g" % rng.uniform(-10, 95), "%.4g" % rng.uniform(-180, 180)]

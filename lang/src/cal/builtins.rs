@@ -304,8 +304,10 @@ pub static RENDERER_VARIABLES: &[&str] = &[
 ];
 
 /// Names rayinit.cal defines (Radiance loads it before any scene function file), with
-/// the parameter count of the functions and whether the definition is a constant `:`. Names only: the definitions are read from
-/// rayinit.cal itself when it is available (see `Env::with_source`).
+/// the parameter count of the functions and whether the definition is a constant `:`.
+/// The definitions themselves are radc's built-in rayinit.cal (`crate::library`), which
+/// a renderer environment loads; this table serves completion and hover, and a test
+/// pins it to that file.
 pub static RAYINIT_NAMES: &[(&str, Option<usize>, bool)] = &[
     ("A1", None, false),
     ("A2", None, false),

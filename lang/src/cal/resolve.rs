@@ -5,7 +5,7 @@
 //! here, while lowering, because Radiance folds while parsing: what a `:` name or a
 //! constant function call folds to depends on the definitions made *before* it.
 
-use super::builtins::{Builtin, LibFn, RAYINIT_NAMES, RENDERER_FUNCTIONS, RENDERER_VARIABLES};
+use super::builtins::{Builtin, LibFn, RENDERER_FUNCTIONS, RENDERER_VARIABLES};
 use super::eval::{Errno, EvalError, Evaluator, Input, Warning};
 use super::fold;
 use super::ir::{Callee, Def, DefId, Expr, Node, OutputDef, SymId, Symbol};
@@ -107,8 +107,40 @@ pub struct Module {
     pub parse_warnings: Vec<Warning>,
 }
 
+/// The renderer's starting module (ray channels, host names, rayinit.cal), built once
+/// per folding mode: a scene can load thousands of function files, and the language
+/// server lowers primitives one by one, so each gets a copy rather than a fresh parse.
+fn renderer_base(fold: bool) -> &'static Module {
+    static FOLDED: std::sync::OnceLock<Module> = std::sync::OnceLock::new();
+    static UNFOLDED: std::sync::OnceLock<Module> = std::sync::OnceLock::new();
+    let cell = if fold { &FOLDED } else { &UNFOLDED };
+    cell.get_or_init(|| {
+        let mut m = Module {
+            fold,
+            ..Module::default()
+        };
+        for b in Builtin::ALL {
+            m.library.insert(b.name(), LibFn::Builtin(b));
+        }
+        for f in RENDERER_FUNCTIONS {
+            m.library.insert(f.name, LibFn::Renderer(f));
+        }
+        m.define_ray_channels();
+        for v in RENDERER_VARIABLES.iter().skip(RAY_CHANNELS.len()) {
+            m.declare_host_name(v, None, false);
+        }
+        m.load_rayinit();
+        m
+    })
+}
+
 impl Module {
     pub fn new(env: &Env) -> Self {
+        if env.host == Host::Renderer {
+            let mut m = renderer_base(env.fold).clone();
+            m.complete = env.complete;
+            return m;
+        }
         let mut m = Module {
             fold: env.fold,
             complete: env.complete,
@@ -118,23 +150,12 @@ impl Module {
             m.library.insert(b.name(), LibFn::Builtin(b));
         }
         match env.host {
-            Host::Bare => {}
             Host::Rcalc => {
                 m.library.insert("in", LibFn::In);
                 m.set_constant("PI", std::f64::consts::PI);
             }
-            Host::Renderer => {
-                for f in RENDERER_FUNCTIONS {
-                    m.library.insert(f.name, LibFn::Renderer(f));
-                }
-                m.define_ray_channels();
-                for v in RENDERER_VARIABLES.iter().skip(RAY_CHANNELS.len()) {
-                    m.declare_host_name(v, None, false);
-                }
-                for (name, arity, constant) in RAYINIT_NAMES {
-                    m.declare_host_name(name, *arity, *constant);
-                }
-            }
+            // The renderer's module is a copy of `renderer_base`, returned above.
+            Host::Bare | Host::Renderer => {}
         }
         m
     }
@@ -192,6 +213,20 @@ impl Module {
 
     pub fn host_name(&self, sym: SymId) -> Option<HostName> {
         self.host_names.get(&sym).copied()
+    }
+
+    /// The renderer loads rayinit.cal before any scene function file (func.c
+    /// `initfunc`), in the global context: `A1`, `noise3a`, `and`, `frac`, ... are
+    /// ordinary definitions over the ray channels and renderer functions, so they fold
+    /// and evaluate as in Radiance. radc's built-in text is used (see
+    /// [`crate::library`]); a different rayinit.cal on RAYPATH is not consulted here,
+    /// since `lang` does no IO.
+    fn load_rayinit(&mut self) {
+        let text = crate::library::builtin(crate::library::RAYINIT).unwrap_or_default();
+        let context = std::mem::take(&mut self.context);
+        let diags = self.add_source(crate::library::RAYINIT_FILE, text);
+        debug_assert!(diags.is_empty(), "built-in rayinit.cal: {diags:?}");
+        self.context = context;
     }
 
     /// func.c binds the ray's values to input channels: `Dx=$1; ...`.
@@ -637,12 +672,23 @@ impl Module {
                     || s.lib.is_some()
                     || self.host_names.contains_key(&SymId(*i as u32))
             })
+            .filter(|(_, s)| !self.is_library_private(s))
             .map(|(_, s)| s.name.as_str())
             .collect();
         v.extend(self.library.keys().copied());
         v.sort_unstable();
         v.dedup();
         v
+    }
+
+    /// A helper of the built-in rayinit.cal (a qualified name defined only there):
+    /// never a name to suggest to the user.
+    fn is_library_private(&self, s: &Symbol) -> bool {
+        s.name.contains(CNTXMARK)
+            && !s.stack.is_empty()
+            && s.stack
+                .iter()
+                .all(|d| self.defs[d.0 as usize].span.file == crate::library::RAYINIT_FILE)
     }
 
     /// rcalc's `doptimize(1)`: flatten `+`/`*` chains in every definition in force and

@@ -149,10 +149,18 @@ pub fn run(args: &[String]) -> ExitCode {
                             return ExitCode::FAILURE;
                         }
                     },
-                    None => {
-                        eprintln!("radc calc: cannot find file '{name}' (searched RAYPATH)");
-                        return ExitCode::FAILURE;
-                    }
+                    // As the renderer does, radc's own library answers for a file
+                    // that no RAYPATH folder holds (`-f rayinit.cal`).
+                    None => match radc_lang::library::builtin(&name) {
+                        Some(text) => {
+                            let shown = format!("{name} (built into radc)");
+                            add(&mut module, &mut sources, &mut diags, shown, text.into());
+                        }
+                        None => {
+                            eprintln!("radc calc: cannot find file '{name}' (searched RAYPATH)");
+                            return ExitCode::FAILURE;
+                        }
+                    },
                 },
                 None => return usage("-f needs a file name"),
             },
