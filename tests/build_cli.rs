@@ -69,6 +69,15 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             .collect();
         let rays = std::fs::read(trace_data().join(format!("{id}.rays"))).expect("rays");
         let rsc = dir.path().join(format!("{id}.rsc"));
+        if id.starts_with("patterns-") {
+            // Patterns are compiled at render time; a compiled scene cannot hold them.
+            let mut args = vec!["build", "-o", s(&rsc)];
+            args.extend(scenes.iter().map(|p| s(p)));
+            let o = radc(&args, b"");
+            assert_eq!(o.status.code(), Some(1), "{id}: radc build must refuse");
+            assert!(stderr(&o).contains("patterns"), "{}", stderr(&o));
+            continue;
+        }
         build(&scenes, &rsc);
         let mut from_text = vec!["trace", "-h"];
         from_text.extend(&options);

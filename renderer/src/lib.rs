@@ -9,6 +9,7 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod picture;
+pub mod procedural;
 pub mod random;
 pub mod ray;
 pub mod ray_order;

@@ -86,6 +86,13 @@ fn run_parsed(args: &[String]) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
+    if scene.functions.is_some() {
+        eprintln!(
+            "radc build: the scene's patterns are compiled at render time, and a compiled \
+             scene file cannot hold them yet; trace or render the scene files instead"
+        );
+        return ExitCode::from(1);
+    }
     let bytes = match scene_file::encode(&scene) {
         Ok(b) => b,
         Err(e) => {

@@ -241,7 +241,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(1);
         }
     }
-    ExitCode::SUCCESS
+    super::trace::report_functions(&scene, "render")
 }
 
 fn is_png(path: &Path) -> bool {

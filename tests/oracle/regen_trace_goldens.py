@@ -264,6 +264,11 @@ def cases():
     case("aliases-view", "aliases.rad", ["-av", ".05", ".05", ".05"], alias_view, "-ovL")
     case("aliases-irradiance", "aliases.rad", ["-I"],
          irradiance_points(rng, 30, [-4, -4, 0], [4, 2.5, 0], [(0, 0, 1)]))
+    pat_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .8], spread=2.5)
+    pat_view += box_rays(rng, 20, [-1, -1, 1.5], [1, 1, 2.5], toward=[0, 0, 8], spread=3)
+    case("patterns-view", "patterns.rad", ["-av", ".05", ".05", ".05"], pat_view, "-ovL")
+    case("patterns-irradiance", "patterns.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     return out
 
 
@@ -281,6 +286,7 @@ def run_case(c, workdir):
         capture_output=True,
         text=True,
         check=True,
+        cwd=SCENES,  # function files (patterns.cal) are found beside the scenes
     )
     return p.stdout
 
