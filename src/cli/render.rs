@@ -1,7 +1,7 @@
 //! `radc render`: rpict for scene files. Writes a Radiance picture (RGBE, new-style RLE)
 //! to stdout or `-o file`, one ray through the centre of each pixel (rpict `-pj 0
 //! -ps 1`), with rpict's view options and the lighting options of `radc trace`.
-//! `-o x.png` writes a tone-mapped PNG (`radc_renderer::tonemap`) instead; `-o` may be
+//! `-o x.png` writes a tone-mapped PNG (`radc_picture::tonemap`) instead; `-o` may be
 //! given more than once. `-e file` sends messages to a file, as rpict's does. On a
 //! terminal, stderr shows the progress.
 
@@ -12,7 +12,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use radc_renderer::camera::{Camera, View};
 use radc_renderer::math::Color;
-use radc_renderer::{Options, Target, Tracer, picture, tonemap};
+use radc_renderer::{Options, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
@@ -249,19 +249,11 @@ fn is_png(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("png"))
 }
 
-/// An 8-bit sRGB PNG, tone-mapped with the automatic exposure (`tonemap`).
+/// An 8-bit sRGB PNG, tone-mapped with the automatic exposure (`radc_picture::tonemap`).
 fn write_png(path: &Path, w: u32, h: u32, pixels: &[Color]) -> std::io::Result<()> {
-    let exposure = tonemap::auto_exposure(pixels);
-    let data = tonemap::to_srgb8(pixels, exposure);
+    let px: Vec<[f64; 3]> = pixels.iter().map(|c| c.to_array()).collect();
     let file = std::fs::File::create(path)?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), w, h);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-    let png_error = |e: png::EncodingError| std::io::Error::other(e.to_string());
-    let mut writer = encoder.write_header().map_err(png_error)?;
-    writer.write_image_data(&data).map_err(png_error)?;
-    writer.finish().map_err(png_error)
+    radc_picture::png_out::write_png(std::io::BufWriter::new(file), w, h, &px)
 }
 
 /// A percentage on stderr (a terminal), rewritten in place until `done` says the rows
