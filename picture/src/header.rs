@@ -70,16 +70,23 @@ impl Header {
     /// be printable; lines end at `\n`; an empty line (or `\r\n`) ends the header.
     /// Returns the header and the offset of the byte after the empty line.
     pub fn parse(data: &[u8]) -> Result<(Header, usize), PictureError> {
-        let bad = |at| PictureError::new(ErrorKind::BadHeader, at);
+        let (lines, end) = Self::parse_partial(data);
+        end.map(|end| (Header { lines }, end))
+    }
+
+    /// [`Header::parse`], also giving the lines read before an error: `getinfo` has
+    /// printed those by the time it finds the header is bad.
+    pub fn parse_partial(data: &[u8]) -> (Vec<HeaderLine>, Result<usize, PictureError>) {
+        let bad = |at| Err(PictureError::new(ErrorKind::BadHeader, at));
+        let mut lines = Vec::new();
         match data.first() {
             Some(&c) if (0x20..0x7f).contains(&c) => {}
-            _ => return Err(bad(0)),
+            _ => return (lines, bad(0)),
         }
-        let mut lines = Vec::new();
         let mut pos = 0;
         loop {
             if pos >= data.len() {
-                return Err(bad(pos));
+                return (lines, bad(pos));
             }
             let rest = &data[pos..];
             let (piece, len) = match memchr(rest) {
@@ -89,7 +96,7 @@ impl Header {
                 _ => (rest, rest.len()),
             };
             if piece == b"\n" || piece == b"\r\n" {
-                return Ok((Header { lines }, pos + len));
+                return (lines, Ok(pos + len));
             }
             lines.push(HeaderLine(piece.to_vec()));
             pos += len;

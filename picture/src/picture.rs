@@ -105,6 +105,11 @@ impl Picture {
         }
     }
 
+    /// True for the formats a picture may have (`32-bit_rle_???e`, `PICFMT`).
+    pub fn is_format(format: &str) -> bool {
+        is_picture_format(format)
+    }
+
     /// RGBE or XYZE (RGBE when the header names none; any other `???e` counts as RGBE).
     pub fn format(&self) -> Format {
         match self.format_name.as_deref() {
@@ -174,7 +179,7 @@ impl Picture {
 }
 
 /// `globmatch("32-bit_rle_???e", f)`, the test `checkheader` makes for pictures.
-pub fn is_picture_format(f: &str) -> bool {
+fn is_picture_format(f: &str) -> bool {
     let b = f.as_bytes();
     b.len() == 15 && b.starts_with(b"32-bit_rle_") && b[14] == b'e'
 }

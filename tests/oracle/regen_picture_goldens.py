@@ -1,0 +1,200 @@
+"""Goldens for the picture commands (`radc getinfo pvalue pflip protate`) from the real
+programs, and the pictures they run on.
+
+Pictures (tests/data/picture/inputs/): made by rpict at widths below and above the
+run-length threshold (17), by `radc render`, turned and flipped by protate and pflip
+(other orientations), converted to XYZE by ra_xyze, given EXPOSURE and COLORCORR lines
+by `getinfo -a`, one without a FORMAT line, one with old-style run-length scanlines,
+one truncated and one that is not a picture. pvalue's text and binary output of one
+picture is kept as input for `pvalue -r`.
+
+Each case (tests/data/picture/cases.json) runs one program in the inputs directory; its
+standard output is kept in tests/data/picture/expected/<n>.out with the exit status.
+Where the program fails part way (a truncated picture) it has written part of its
+output; radc writes nothing then (no partial output), which the test allows.
+The header line the program adds names it as Radiance does (`pflip -h`): it is stored as
+radc writes it (`radc pflip -h`), the only change. tests/picture_tools.rs runs radc on
+the same cases and compares byte for byte.
+
+    python tests/oracle/regen_picture_goldens.py           # rewrite inputs and goldens
+    python tests/oracle/regen_picture_goldens.py --check   # rerun the programs on the
+                                                           # kept inputs; fail on change
+"""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DATA = os.path.join(ROOT, "tests", "data", "picture")
+INPUTS = os.path.join(DATA, "inputs")
+SCENES = os.path.join(ROOT, "tests", "data", "trace", "scenes")
+DETERMINISTIC = ["-pj", "0", "-ps", "1", "-ab", "0", "-dj", "0", "-dt", "0", "-dr", "0", "-u-"]
+VIEW = "-vp 3 -3 2.5 -vd -1 1 -.7 -vh 50 -vv 40 -pa 0"
+
+
+def run(cmd, out_path=None, stdin=None):
+    p = subprocess.run(cmd, capture_output=True, cwd=INPUTS, input=stdin)
+    if p.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed: {p.stderr.decode()}")
+    if out_path:
+        with open(os.path.join(INPUTS, out_path), "wb") as f:
+            f.write(p.stdout)
+    return p.stdout
+
+
+def radc_binary():
+    subprocess.run(["cargo", "build", "-q", "--bin", "radc"], cwd=ROOT, check=True)
+    return os.path.join(ROOT, "target", "debug", "radc")
+
+
+def old_style(path_in, path_out):
+    """Rewrites a flat picture's scanlines with old-style runs: (1,1,1,n) repeats."""
+    data = open(os.path.join(INPUTS, path_in), "rb").read()
+    head_end = data.index(b"\n\n") + 2
+    res_end = data.index(b"\n", head_end) + 1
+    res = data[head_end:res_end].split()
+    width, height = int(res[3]), int(res[1])
+    px = data[res_end:]
+    assert len(px) == 4 * width * height, "expected a flat picture"
+    out = bytearray(data[:res_end])
+    for y in range(height):
+        row = [px[4 * (y * width + x):4 * (y * width + x) + 4] for x in range(width)]
+        x = 0
+        while x < width:
+            out += row[x]
+            n = 1
+            while x + n < width and row[x + n] == row[x] and n < 255:
+                n += 1
+            if n > 1:
+                out += bytes([1, 1, 1, n - 1])
+            x += n
+    open(os.path.join(INPUTS, path_out), "wb").write(bytes(out))
+
+
+def make_inputs():
+    if os.path.isdir(INPUTS):
+        shutil.rmtree(INPUTS)
+    os.makedirs(INPUTS)
+    radc = radc_binary()
+    with tempfile.TemporaryDirectory() as tmp:
+        octree = os.path.join(tmp, "scene.oct")
+        with open(octree, "wb") as f:
+            subprocess.run(["oconv", os.path.join(SCENES, "sphere_lamp.rad")], stdout=f, check=True)
+        for name, size in [("small", "-x 12 -y 9"), ("wide", "-x 24 -y 16"), ("tall", "-x 18 -y 22")]:
+            run(["rpict"] + DETERMINISTIC + VIEW.split() + size.split() + [octree], f"{name}.hdr")
+    run([radc, "render"] + VIEW.split() + ["-x", "20", "-y", "18", "-o", "radc.hdr",
+         os.path.join(SCENES, "sphere_lamp.rad")])
+    run(["protate", "wide.hdr"], "turned.hdr")
+    run(["protate", "-r", "tall.hdr"], "turned-ccw.hdr")
+    run(["pflip", "-h", "wide.hdr"], "flipped.hdr")
+    run(["pflip", "-v", "-c", "small.hdr"], "corrected.hdr")
+    run(["ra_xyze", "wide.hdr", "xyz.hdr"])
+    run(["getinfo", "-a", "EXPOSURE=0.25", "COLORCORR= 1.2 1 0.8", "PIXASPECT=0.5"],
+        "exposed.hdr", stdin=open(os.path.join(INPUTS, "radc.hdr"), "rb").read())
+    data = open(os.path.join(INPUTS, "small.hdr"), "rb").read()
+    open(os.path.join(INPUTS, "no-format.hdr"), "wb").write(
+        data.replace(b"FORMAT=32-bit_rle_rgbe\n", b""))
+    old_style("small.hdr", "old-rle.hdr")
+    wide = open(os.path.join(INPUTS, "wide.hdr"), "rb").read()
+    open(os.path.join(INPUTS, "truncated.hdr"), "wb").write(wide[: len(wide) - 100])
+    open(os.path.join(INPUTS, "not-a-picture.hdr"), "wb").write(b"\x00\x01\x02 plainly not a picture\n")
+    run(["pvalue", "wide.hdr"], "wide.txt")
+    run(["pvalue", "-h", "-H", "-d", "tall.hdr"], "tall-data.txt")
+    run(["pvalue", "-df", "wide.hdr"], "wide.float")
+    run(["pvalue", "-h", "-H", "-dd", "-b", "small.hdr"], "small-bright.double")
+    run(["pvalue", "-db", "radc.hdr"], "radc.byte")
+
+
+PICTURES = ["small.hdr", "wide.hdr", "tall.hdr", "radc.hdr", "turned.hdr", "turned-ccw.hdr",
+            "flipped.hdr", "corrected.hdr", "xyz.hdr", "exposed.hdr", "no-format.hdr", "old-rle.hdr"]
+DAMAGED = ["truncated.hdr", "not-a-picture.hdr", "missing.hdr"]
+
+
+def cases():
+    c = []
+    for p in PICTURES:
+        c += [["getinfo", p], ["getinfo", "-d", p], ["getinfo", "+d", p]]
+        c += [["pvalue", p], ["pvalue", "-h", "-H", "-d", p], ["pvalue", "-H", "-d", p], ["pvalue", "-b", p], ["pvalue", "-o", p],
+              ["pvalue", "-h", "-df", p], ["pvalue", "-dd", "-H", p], ["pvalue", "-b", "-db", p],
+              ["pvalue", "-o", "-b", "-d", p], ["pvalue", "-u", "-h", p], ["pvalue", "-pg", "-d", p]]
+        c += [["pflip", "-h", p], ["pflip", "-v", p], ["pflip", "-h", "-v", p], ["pflip", "-h", "-c", p]]
+        c += [["protate", p], ["protate", "-r", p], ["protate", "-c", p]]
+    c += [["getinfo"] + PICTURES, ["getinfo", "-d"] + PICTURES]
+    c += [["pvalue", "-e", "+2", "wide.hdr"], ["pvalue", "-e", "0.5", "-R", "-d", "wide.hdr"],
+          ["pvalue", "-di", "small.hdr"]]
+    for d in DAMAGED:
+        c += [["getinfo", d], ["getinfo", "-d", d], ["pvalue", d], ["pflip", "-h", d], ["protate", d]]
+    c += [["getinfo", "small.hdr", "missing.hdr", "not-a-picture.hdr"],
+          ["getinfo", "-d", "small.hdr", "missing.hdr", "not-a-picture.hdr"]]
+    c += [["pvalue", "-r", "wide.txt"], ["pvalue", "-r", "-h", "-H", "-d", "-y", "22", "+x", "18", "tall-data.txt"],
+          ["pvalue", "-r", "-df", "wide.float"], ["pvalue", "-r", "wide.float"],
+          ["pvalue", "-r", "-db", "radc.byte"], ["pvalue", "-r", "-h", "-H", "-dd", "-b", "-y", "9", "+x", "12",
+                                                 "small-bright.double"],
+          ["pvalue", "-r", "-u", "wide.txt"], ["pvalue", "-r", "-e", "-1", "wide.txt"]]
+    return c
+
+
+def radc_header(prog, out):
+    """The line the program adds to the header, as radc writes it."""
+    end = out.find(b"\n\n")
+    if end < 0:
+        return out
+    head = out[: end + 1]
+    lines = head.split(b"\n")
+    for i in range(len(lines) - 1, -1, -1):
+        if re.match(rb"^" + prog.encode() + rb"( |$)", lines[i]):
+            lines[i] = b"radc " + lines[i]
+            break
+    return b"\n".join(lines) + out[end + 1:]
+
+
+def golden(case):
+    p = subprocess.run(case, capture_output=True, cwd=INPUTS)
+    out = p.stdout
+    if case[0] != "getinfo":
+        out = radc_header(case[0], out)
+    return out, p.returncode
+
+
+def main():
+    check = "--check" in sys.argv
+    if not check:
+        make_inputs()
+    expected = os.path.join(DATA, "expected")
+    listed = []
+    failures = 0
+    if not check:
+        if os.path.isdir(expected):
+            shutil.rmtree(expected)
+        os.makedirs(expected)
+    for n, case in enumerate(cases()):
+        out, status = golden(case)
+        path = os.path.join(expected, f"{n:03}.out")
+        listed.append({"args": case, "status": status, "stdout": f"expected/{n:03}.out"})
+        if check:
+            if not os.path.exists(path) or open(path, "rb").read() != out:
+                print(f"changed: {' '.join(case)}")
+                failures += 1
+        else:
+            open(path, "wb").write(out)
+    text = json.dumps(listed, indent=1) + "\n"
+    cases_path = os.path.join(DATA, "cases.json")
+    if check:
+        if open(cases_path).read() != text:
+            print("changed: cases.json")
+            failures += 1
+        if failures:
+            sys.exit(f"{failures} picture goldens differ from the oracle")
+        print(f"{len(listed)} picture cases agree with the oracle")
+    else:
+        open(cases_path, "w").write(text)
+        print(f"wrote {len(listed)} picture cases")
+
+
+if __name__ == "__main__":
+    main()
