@@ -5,8 +5,9 @@
 //! the program fails part way through (a truncated picture) and has written part of its
 //! output, radc writes nothing instead: a failed command leaves no partial output.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/picture")
@@ -30,11 +31,25 @@ fn picture_commands_agree_with_radiance() {
         let want = std::fs::read(data().join(case["stdout"].as_str().expect("stdout")))
             .expect("expected output");
         let status = case["status"].as_i64().expect("status");
-        let out = Command::new(env!("CARGO_BIN_EXE_radc"))
+        let stdin = case["stdin"]
+            .as_str()
+            .map(|f| std::fs::read(data().join("inputs").join(f)).expect("stdin file"))
+            .unwrap_or_default();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_radc"))
             .args(&args)
             .current_dir(data().join("inputs"))
-            .output()
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
             .expect("radc runs");
+        let mut to = child.stdin.take().expect("stdin");
+        // Written from a thread: radc may exit (or write) before reading it all.
+        let feeder = std::thread::spawn(move || {
+            let _ = to.write_all(&stdin);
+        });
+        let out = child.wait_with_output().expect("radc finishes");
+        let _ = feeder.join();
         let got_status = i64::from(out.status.code().unwrap_or(-1));
         let same = out.stdout == want || (status != 0 && out.stdout.is_empty());
         if !same || got_status != status {

@@ -8,7 +8,8 @@ by `getinfo -a`, one without a FORMAT line, one with old-style run-length scanli
 one truncated and one that is not a picture. pvalue's text and binary output of one
 picture is kept as input for `pvalue -r`.
 
-Each case (tests/data/picture/cases.json) runs one program in the inputs directory; its
+Each case (tests/data/picture/cases.json) runs one program in the inputs directory (some
+with an input picture or text on standard input); its
 standard output is kept in tests/data/picture/expected/<n>.out with the exit status.
 Where the program fails part way (a truncated picture) it has written part of its
 output; radc writes nothing then (no partial output), which the test allows.
@@ -136,7 +137,21 @@ def cases():
           ["pvalue", "-r", "-db", "radc.byte"], ["pvalue", "-r", "-h", "-H", "-dd", "-b", "-y", "9", "+x", "12",
                                                  "small-bright.double"],
           ["pvalue", "-r", "-u", "wide.txt"], ["pvalue", "-r", "-e", "-1", "wide.txt"]]
-    return c
+    return [(x, None) for x in c] + STDIN_CASES
+
+
+# Cases reading standard input: (arguments, the input file given on standard input).
+STDIN_CASES = [
+    (["getinfo"], "wide.hdr"), (["getinfo", "-d"], "turned.hdr"), (["getinfo", "+d"], "small.hdr"),
+    (["getinfo", "-"], "wide.hdr"), (["getinfo", "-d", "-"], "wide.hdr"), (["getinfo", "+d", "-"], "xyz.hdr"),
+    (["getinfo", "-a", "EXPOSURE=2", "VIEW= -vtv -vh 30\n", ""], "wide.hdr"),
+    (["getinfo", "-a", "SOFTWARE= x"], "no-format.hdr"),
+    (["getinfo", "-c", "cat"], "wide.hdr"), (["getinfo", "-d", "-c", "wc", "-c"], "wide.hdr"),
+    (["getinfo", "+d", "-c", "cat"], "turned.hdr"), (["getinfo", "-c", "cat"], "not-a-picture.hdr"),
+    (["getinfo", "-"], "not-a-picture.hdr"), (["getinfo"], "truncated.hdr"),
+    (["pflip", "-h"], "wide.hdr"), (["pflip", "-h", "-"], "flipped.hdr"), (["pflip", "-v"], "wide.hdr"),
+    (["pvalue"], "small.hdr"), (["pvalue", "-r"], "wide.txt"), (["pvalue", "-r", "-df"], "wide.float"),
+]
 
 
 def radc_header(prog, out):
@@ -153,8 +168,9 @@ def radc_header(prog, out):
     return b"\n".join(lines) + out[end + 1:]
 
 
-def golden(case):
-    p = subprocess.run(case, capture_output=True, cwd=INPUTS)
+def golden(case, stdin):
+    data = open(os.path.join(INPUTS, stdin), "rb").read() if stdin else b""
+    p = subprocess.run(case, capture_output=True, cwd=INPUTS, input=data)
     out = p.stdout
     if case[0] != "getinfo":
         out = radc_header(case[0], out)
@@ -172,10 +188,13 @@ def main():
         if os.path.isdir(expected):
             shutil.rmtree(expected)
         os.makedirs(expected)
-    for n, case in enumerate(cases()):
-        out, status = golden(case)
+    for n, (case, stdin) in enumerate(cases()):
+        out, status = golden(case, stdin)
         path = os.path.join(expected, f"{n:03}.out")
-        listed.append({"args": case, "status": status, "stdout": f"expected/{n:03}.out"})
+        entry = {"args": case, "status": status, "stdout": f"expected/{n:03}.out"}
+        if stdin:
+            entry["stdin"] = stdin
+        listed.append(entry)
         if check:
             if not os.path.exists(path) or open(path, "rb").read() != out:
                 print(f"changed: {' '.join(case)}")
