@@ -17,6 +17,10 @@ The header line the program adds names it as Radiance does (`pflip -h`): it is s
 radc writes it (`radc pflip -h`), the only change. tests/picture_tools.rs runs radc on
 the same cases and compares byte for byte.
 
+colorpict.json: what rtrace sees of some of the pictures used as `colorpict` patterns
+(on a glow, so the radiance is the pattern's value) over a grid of (u, v) inside and
+outside each picture; picture/tests/colorpict.rs samples them with radc_picture.
+
     python tests/oracle/regen_picture_goldens.py           # rewrite inputs and goldens
     python tests/oracle/regen_picture_goldens.py --check   # rerun the programs on the
                                                            # kept inputs; fail on change
@@ -177,6 +181,38 @@ def golden(case, stdin):
     return out, p.returncode
 
 
+COLORPICT = """void colorpict pic
+7 red green blue {picture} . Px Py
+0
+0
+pic glow g 0 0 4 1 1 1 0
+g polygon sq 0 0 12 -9 -9 0  9 -9 0  9 9 0  -9 9 0
+"""
+COLORPICT_PICTURES = ["wide.hdr", "tall.hdr", "exposed.hdr", "turned.hdr", "small.hdr"]
+COORDS = [-0.4, -0.05, 0.0, 0.013, 0.25, 0.5, 0.61, 0.999, 1.0, 1.2, 1.4, 1.5, 1.75, 2.2, 2.6, 4.0]
+
+
+def colorpict_values():
+    """What rtrace sees of each picture as a colorpict pattern on a glow (radiance
+    = pattern value), at (u, v) = (Px, Py) on a square at z = 0."""
+    out = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for pic in COLORPICT_PICTURES:
+            rad = os.path.join(tmp, "scene.rad")
+            open(rad, "w").write(COLORPICT.format(picture=pic))
+            octree = os.path.join(tmp, "scene.oct")
+            with open(octree, "wb") as f:
+                subprocess.run(["oconv", rad], stdout=f, check=True, cwd=INPUTS)
+            points = [(u, v) for u in COORDS for v in COORDS]
+            rays = "".join(f"{u} {v} 1 0 0 -1\n" for u, v in points)
+            p = subprocess.run(["rtrace", "-h", "-ov", "-w", octree], input=rays.encode(),
+                               capture_output=True, check=True, cwd=INPUTS)
+            values = p.stdout.decode().split()
+            for i, (u, v) in enumerate(points):
+                out.append({"picture": pic, "u": u, "v": v, "rgb": values[3 * i:3 * i + 3]})
+    return "[\n" + ",\n".join(json.dumps(e) for e in out) + "\n]\n"
+
+
 def main():
     check = "--check" in sys.argv
     if not check:
@@ -203,7 +239,12 @@ def main():
             open(path, "wb").write(out)
     text = json.dumps(listed, indent=1) + "\n"
     cases_path = os.path.join(DATA, "cases.json")
+    colorpict = colorpict_values()
+    colorpict_path = os.path.join(DATA, "colorpict.json")
     if check:
+        if open(colorpict_path).read() != colorpict:
+            print("changed: colorpict.json")
+            failures += 1
         if open(cases_path).read() != text:
             print("changed: cases.json")
             failures += 1
@@ -212,6 +253,7 @@ def main():
         print(f"{len(listed)} picture cases agree with the oracle")
     else:
         open(cases_path, "w").write(text)
+        open(colorpict_path, "w").write(colorpict)
         print(f"wrote {len(listed)} picture cases")
 
 
