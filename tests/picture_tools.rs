@@ -114,3 +114,42 @@ fn unsupported_options_and_damage_are_clear_errors() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("not-a-picture.hdr: bad header"), "{err}");
 }
+
+/// A picture given where a scene is expected is named as a picture (not read as scene
+/// text); `radc render -o x.png picture.hdr` makes a PNG of it.
+#[test]
+fn pictures_given_as_scenes_are_recognized() {
+    let inputs = data().join("inputs");
+    let radc = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_radc"))
+            .args(args)
+            .current_dir(&inputs)
+            .stdin(Stdio::null())
+            .output()
+            .expect("radc runs")
+    };
+    for args in [
+        &["check", "wide.hdr"][..],
+        &["render", "-o", "never.hdr", "turned.hdr"],
+        &["trace", "radc.hdr"],
+    ] {
+        let out = radc(args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("is a Radiance picture ("), "{args:?}: {err}");
+        assert!(err.lines().count() <= 2, "{args:?}: {err}");
+    }
+    assert!(!inputs.join("never.hdr").exists());
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("wide.png");
+    let out = radc(&["render", "-o", png.to_str().expect("path"), "wide.hdr"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(&png).expect("png");
+    assert!(bytes.starts_with(b"\x89PNG"));
+    // Width and height from the IHDR chunk: the picture's.
+    assert_eq!(&bytes[16..24], &[0, 0, 0, 24, 0, 0, 0, 16]);
+}

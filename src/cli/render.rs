@@ -2,7 +2,8 @@
 //! to stdout or `-o file`, one ray through the centre of each pixel (rpict `-pj 0
 //! -ps 1`), with rpict's view options and the lighting options of `radc trace`.
 //! `-o x.png` writes a tone-mapped PNG (`radc_picture::tonemap`) instead; `-o` may be
-//! given more than once. `-e file` sends messages to a file, as rpict's does. On a
+//! given more than once. Given a Radiance picture instead of a scene, `-o x.png` makes
+//! a PNG of that picture. `-e file` sends messages to a file, as rpict's does. On a
 //! terminal, stderr shows the progress.
 
 use std::io::{IsTerminal, Write};
@@ -140,6 +141,9 @@ fn run_parsed(args: &[String]) -> ExitCode {
         );
         return ExitCode::from(USAGE_ERROR);
     }
+    if let Some(code) = picture_to_png(&a) {
+        return code;
+    }
     let camera = match a.view.camera() {
         Ok(c) => c,
         Err(e) => {
@@ -242,6 +246,51 @@ fn run_parsed(args: &[String]) -> ExitCode {
         }
     }
     ExitCode::SUCCESS
+}
+
+/// `radc render -o x.png picture.hdr`: the one input is a Radiance picture and every
+/// output a PNG, so the picture itself is tone-mapped to PNG (nothing is rendered).
+/// `None` when the input is not a picture or the outputs are not all PNGs (then the
+/// scene loader explains that a picture is not a scene).
+fn picture_to_png(a: &Args) -> Option<ExitCode> {
+    let [input] = &a.scenes[..] else { return None };
+    super::build::picture_description(input)?;
+    if a.outputs.is_empty() || !a.outputs.iter().all(|p| is_png(p)) {
+        return None;
+    }
+    let picture = match std::fs::read(input)
+        .map_err(|e| e.to_string())
+        .and_then(|b| radc_picture::Picture::read(&b).map_err(|e| e.to_string()))
+    {
+        Ok(p) => p,
+        Err(e) => {
+            errln!("radc render: {}: {e}", input.display());
+            return Some(ExitCode::from(1));
+        }
+    };
+    if picture.format() == radc_picture::Format::Xyze {
+        errln!(
+            "radc render: {}: is an XYZE picture; the PNG tone map takes RGB (convert it \
+             with Radiance's 'ra_xyze -r' first)",
+            input.display()
+        );
+        return Some(ExitCode::from(1));
+    }
+    let px: Vec<Color> = picture
+        .standard_pixels()
+        .into_iter()
+        .map(|c| {
+            let [r, g, b] = radc_picture::decode(c);
+            Color::new(f64::from(r), f64::from(g), f64::from(b))
+        })
+        .collect();
+    for path in &a.outputs {
+        if let Err(e) = write_png(path, picture.width(), picture.height(), &px) {
+            errln!("radc render: cannot write {}: {e}", path.display());
+            return Some(ExitCode::from(1));
+        }
+    }
+    Some(ExitCode::SUCCESS)
 }
 
 fn is_png(path: &Path) -> bool {
