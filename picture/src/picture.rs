@@ -54,6 +54,12 @@ impl Picture {
 
     /// [`Picture::read`] refusing pictures of more than `max_pixels` pixels.
     pub fn read_with_limit(data: &[u8], max_pixels: u64) -> Result<Picture, PictureError> {
+        Self::read_prefix(data, max_pixels).map(|(p, _)| p)
+    }
+
+    /// Reads the picture at the start of `data`, which may go on (a stream of pictures,
+    /// as `ra_rgbe` reads): the picture and the number of bytes it took.
+    pub fn read_prefix(data: &[u8], max_pixels: u64) -> Result<(Picture, usize), PictureError> {
         let (header, mut pos) = Header::parse(data)?;
         let format_name = header.format();
         if let Some(f) = &format_name
@@ -86,12 +92,15 @@ impl Picture {
                 }
             })?;
         }
-        Ok(Picture {
-            header,
-            resolution,
-            format_name,
-            pixels,
-        })
+        Ok((
+            Picture {
+                header,
+                resolution,
+                format_name,
+                pixels,
+            },
+            pos,
+        ))
     }
 
     /// A new picture in standard orientation from pixels given top row first.

@@ -124,6 +124,11 @@ const COMMANDS: &[Command] = &[
         run: picture_tools::protate::run,
     },
     Command {
+        name: "ra_rgbe",
+        summary: "copy pictures with flat or run-length scanlines, as Radiance's ra_rgbe",
+        run: picture_tools::ra_rgbe::run,
+    },
+    Command {
         name: "doc",
         summary: "primitive type reference: 'doc types', 'doc plastic', 'doc codes'",
         run: doc::doc,

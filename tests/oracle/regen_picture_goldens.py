@@ -1,11 +1,11 @@
-"""Goldens for the picture commands (`radc getinfo pvalue pflip protate`) from the real
+"""Goldens for the picture commands (`radc getinfo pvalue pflip protate ra_rgbe`) from the real
 programs, and the pictures they run on.
 
 Pictures (tests/data/picture/inputs/): made by rpict at widths below and above the
 run-length threshold (17), by `radc render`, turned and flipped by protate and pflip
 (other orientations), converted to XYZE by ra_xyze, given EXPOSURE and COLORCORR lines
 by `getinfo -a`, one without a FORMAT line, one with old-style run-length scanlines,
-one truncated and one that is not a picture. pvalue's text and binary output of one
+one truncated, one that is not a picture, and a stream of frames (`FRAME=`). pvalue's text and binary output of one
 picture is kept as input for `pvalue -r`.
 
 Each case (tests/data/picture/cases.json) runs one program in the inputs directory (some
@@ -108,6 +108,9 @@ def make_inputs():
     wide = open(os.path.join(INPUTS, "wide.hdr"), "rb").read()
     open(os.path.join(INPUTS, "truncated.hdr"), "wb").write(wide[: len(wide) - 100])
     open(os.path.join(INPUTS, "not-a-picture.hdr"), "wb").write(b"\x00\x01\x02 plainly not a picture\n")
+    small = open(os.path.join(INPUTS, "small.hdr"), "rb").read()
+    framed = [wide.replace(b"\n\n", b"\nFRAME=%d\n\n" % n, 1) for n in (1, 2, 3)]
+    open(os.path.join(INPUTS, "frames.hdr"), "wb").write(wide + small + b"".join(framed))
     run(["pvalue", "wide.hdr"], "wide.txt")
     run(["pvalue", "-h", "-H", "-d", "tall.hdr"], "tall-data.txt")
     run(["pvalue", "-df", "wide.hdr"], "wide.float")
@@ -129,11 +132,13 @@ def cases():
               ["pvalue", "-o", "-b", "-d", p], ["pvalue", "-u", "-h", p], ["pvalue", "-pg", "-d", p]]
         c += [["pflip", "-h", p], ["pflip", "-v", p], ["pflip", "-h", "-v", p], ["pflip", "-h", "-c", p]]
         c += [["protate", p], ["protate", "-r", p], ["protate", "-c", p]]
+        c += [["ra_rgbe", p], ["ra_rgbe", "-r", p], ["ra_rgbe", "-e", "-2", p]]
     c += [["getinfo"] + PICTURES, ["getinfo", "-d"] + PICTURES]
     c += [["pvalue", "-e", "+2", "wide.hdr"], ["pvalue", "-e", "0.5", "-R", "-d", "wide.hdr"],
           ["pvalue", "-di", "small.hdr"]]
     for d in DAMAGED:
-        c += [["getinfo", d], ["getinfo", "-d", d], ["pvalue", d], ["pflip", "-h", d], ["protate", d]]
+        c += [["getinfo", d], ["getinfo", "-d", d], ["pvalue", d], ["pflip", "-h", d], ["protate", d],
+              ["ra_rgbe", d]]
     c += [["getinfo", "small.hdr", "missing.hdr", "not-a-picture.hdr"],
           ["getinfo", "-d", "small.hdr", "missing.hdr", "not-a-picture.hdr"]]
     c += [["pvalue", "-r", "wide.txt"], ["pvalue", "-r", "-h", "-H", "-d", "-y", "22", "+x", "18", "tall-data.txt"],
@@ -155,6 +160,8 @@ STDIN_CASES = [
     (["getinfo", "-"], "not-a-picture.hdr"), (["getinfo"], "truncated.hdr"),
     (["pflip", "-h"], "wide.hdr"), (["pflip", "-h", "-"], "flipped.hdr"), (["pflip", "-v"], "wide.hdr"),
     (["pvalue"], "small.hdr"), (["pvalue", "-r"], "wide.txt"), (["pvalue", "-r", "-df"], "wide.float"),
+    (["ra_rgbe", "-r"], "frames.hdr"), (["ra_rgbe", "-e", "+1", "-n", "2"], "frames.hdr"),
+    (["ra_rgbe", "-n", "3", "-"], "frames.hdr"), (["ra_rgbe"], "not-a-picture.hdr"), (["ra_rgbe", "-r"], "old-rle.hdr"),
 ]
 
 
@@ -176,7 +183,10 @@ def golden(case, stdin):
     data = open(os.path.join(INPUTS, stdin), "rb").read() if stdin else b""
     p = subprocess.run(case, capture_output=True, cwd=INPUTS, input=data)
     out = p.stdout
-    if case[0] != "getinfo":
+    if case[0] == "ra_rgbe":
+        # Every frame's header names the program.
+        out = re.sub(rb"(^|\n)ra_rgbe( |\n)", rb"\1radc ra_rgbe\2", out)
+    elif case[0] != "getinfo":
         out = radc_header(case[0], out)
     return out, p.returncode
 
