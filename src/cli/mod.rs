@@ -129,6 +129,11 @@ const COMMANDS: &[Command] = &[
         run: picture_tools::ra_rgbe::run,
     },
     Command {
+        name: "ra_xyze",
+        summary: "convert pictures between RGBE and XYZE, as Radiance's ra_xyze",
+        run: picture_tools::ra_xyze::run,
+    },
+    Command {
         name: "doc",
         summary: "primitive type reference: 'doc types', 'doc plastic', 'doc codes'",
         run: doc::doc,

@@ -1,4 +1,4 @@
-"""Goldens for the picture commands (`radc getinfo pvalue pflip protate ra_rgbe`) from the real
+"""Goldens for the picture commands (`radc getinfo pvalue pflip protate ra_rgbe ra_xyze`) from the real
 programs, and the pictures they run on.
 
 Pictures (tests/data/picture/inputs/): made by rpict at widths below and above the
@@ -133,12 +133,16 @@ def cases():
         c += [["pflip", "-h", p], ["pflip", "-v", p], ["pflip", "-h", "-v", p], ["pflip", "-h", "-c", p]]
         c += [["protate", p], ["protate", "-r", p], ["protate", "-c", p]]
         c += [["ra_rgbe", p], ["ra_rgbe", "-r", p], ["ra_rgbe", "-e", "-2", p]]
+        c += [["ra_xyze", p], ["ra_xyze", "-r", p], ["ra_xyze", "-c", "-o", p], ["ra_xyze", "-r", "-u", "-e", "+1", p]]
     c += [["getinfo"] + PICTURES, ["getinfo", "-d"] + PICTURES]
+    c += [["ra_xyze", "-r", "-p", ".7", ".3", ".2", ".7", ".1", ".05", ".3333", ".3333", "wide.hdr"],
+          ["ra_xyze", "-r", "-o", "-p", ".64", ".33", ".3", ".6", ".15", ".06", ".3333", ".3333", "xyz.hdr"],
+          ["ra_xyze", "-e", "0.3", "radc.hdr"]]
     c += [["pvalue", "-e", "+2", "wide.hdr"], ["pvalue", "-e", "0.5", "-R", "-d", "wide.hdr"],
           ["pvalue", "-di", "small.hdr"]]
     for d in DAMAGED:
         c += [["getinfo", d], ["getinfo", "-d", d], ["pvalue", d], ["pflip", "-h", d], ["protate", d],
-              ["ra_rgbe", d]]
+              ["ra_rgbe", d], ["ra_xyze", d]]
     c += [["getinfo", "small.hdr", "missing.hdr", "not-a-picture.hdr"],
           ["getinfo", "-d", "small.hdr", "missing.hdr", "not-a-picture.hdr"]]
     c += [["pvalue", "-r", "wide.txt"], ["pvalue", "-r", "-h", "-H", "-d", "-y", "22", "+x", "18", "tall-data.txt"],
@@ -161,7 +165,7 @@ STDIN_CASES = [
     (["pflip", "-h"], "wide.hdr"), (["pflip", "-h", "-"], "flipped.hdr"), (["pflip", "-v"], "wide.hdr"),
     (["pvalue"], "small.hdr"), (["pvalue", "-r"], "wide.txt"), (["pvalue", "-r", "-df"], "wide.float"),
     (["ra_rgbe", "-r"], "frames.hdr"), (["ra_rgbe", "-e", "+1", "-n", "2"], "frames.hdr"),
-    (["ra_rgbe", "-n", "3", "-"], "frames.hdr"), (["ra_rgbe"], "not-a-picture.hdr"), (["ra_rgbe", "-r"], "old-rle.hdr"),
+    (["ra_rgbe", "-n", "3", "-"], "frames.hdr"), (["ra_xyze", "-r"], "xyz.hdr"), (["ra_rgbe"], "not-a-picture.hdr"), (["ra_rgbe", "-r"], "old-rle.hdr"),
 ]
 
 

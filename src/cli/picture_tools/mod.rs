@@ -1,4 +1,4 @@
-//! The picture commands (`radc getinfo pvalue pflip protate ra_rgbe`): thin shells over
+//! The picture commands (`radc getinfo pvalue pflip protate ra_rgbe ra_xyze`): thin shells over
 //! `radc_picture` with the options, outputs and exit codes of Radiance's programs
 //! (1 for every error, usage errors included, as those programs exit). Messages name
 //! the file and, for damaged pictures, the byte offset.
@@ -8,6 +8,7 @@ pub mod pflip;
 pub mod protate;
 pub mod pvalue;
 pub mod ra_rgbe;
+pub mod ra_xyze;
 
 use std::io::{Read, Write};
 use std::os::fd::AsFd;
