@@ -98,6 +98,7 @@ fn unsupported_options_and_damage_are_clear_errors() {
         ],
         &["getinfo", "-r", "VIEW"],
         &["ra_rgbe", "wide.hdr", "!cat"],
+        &["ra_ppm", "-s", "1000", "wide.hdr"],
     ] {
         let out = radc(args);
         assert_eq!(out.status.code(), Some(1), "{args:?}");

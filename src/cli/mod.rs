@@ -124,6 +124,11 @@ const COMMANDS: &[Command] = &[
         run: picture_tools::protate::run,
     },
     Command {
+        name: "ra_ppm",
+        summary: "convert pictures to and from Poskanzer pixmaps, as Radiance's ra_ppm",
+        run: picture_tools::ra_ppm::run,
+    },
+    Command {
         name: "ra_rgbe",
         summary: "copy pictures with flat or run-length scanlines, as Radiance's ra_rgbe",
         run: picture_tools::ra_rgbe::run,

@@ -1,12 +1,12 @@
-"""Goldens for the picture commands (`radc getinfo pvalue pflip protate ra_rgbe ra_xyze`) from the real
-programs, and the pictures they run on.
+"""Goldens for the picture commands (`radc getinfo pvalue pflip protate ra_ppm ra_rgbe
+ra_xyze`) from the real programs, and the pictures they run on.
 
 Pictures (tests/data/picture/inputs/): made by rpict at widths below and above the
 run-length threshold (17), by `radc render`, turned and flipped by protate and pflip
 (other orientations), converted to XYZE by ra_xyze, given EXPOSURE and COLORCORR lines
 by `getinfo -a`, one without a FORMAT line, one with old-style run-length scanlines,
 one truncated, one that is not a picture, and a stream of frames (`FRAME=`). pvalue's text and binary output of one
-picture is kept as input for `pvalue -r`.
+picture is kept as input for `pvalue -r`, and ra_ppm's pixmaps as input for `ra_ppm -r`.
 
 Each case (tests/data/picture/cases.json) runs one program in the inputs directory (some
 with an input picture or text on standard input); its
@@ -116,6 +116,10 @@ def make_inputs():
     run(["pvalue", "-df", "wide.hdr"], "wide.float")
     run(["pvalue", "-h", "-H", "-dd", "-b", "small.hdr"], "small-bright.double")
     run(["pvalue", "-db", "radc.hdr"], "radc.byte")
+    run(["ra_ppm", "wide.hdr"], "wide.ppm")
+    run(["ra_ppm", "-a", "-b", "small.hdr"], "small.pgm")
+    run(["ra_ppm", "-a", "-s", "100", "radc.hdr"], "radc-100.ppm")
+    run(["ra_ppm", "-b", "turned.hdr"], "turned.pgm")
 
 
 PICTURES = ["small.hdr", "wide.hdr", "tall.hdr", "radc.hdr", "turned.hdr", "turned-ccw.hdr",
@@ -134,15 +138,19 @@ def cases():
         c += [["protate", p], ["protate", "-r", p], ["protate", "-c", p]]
         c += [["ra_rgbe", p], ["ra_rgbe", "-r", p], ["ra_rgbe", "-e", "-2", p]]
         c += [["ra_xyze", p], ["ra_xyze", "-r", p], ["ra_xyze", "-c", "-o", p], ["ra_xyze", "-r", "-u", "-e", "+1", p]]
+        c += [["ra_ppm", p], ["ra_ppm", "-a", p], ["ra_ppm", "-b", "-e", "-2", p], ["ra_ppm", "-a", "-b", "-g", "1.6", p]]
     c += [["getinfo"] + PICTURES, ["getinfo", "-d"] + PICTURES]
     c += [["ra_xyze", "-r", "-p", ".7", ".3", ".2", ".7", ".1", ".05", ".3333", ".3333", "wide.hdr"],
           ["ra_xyze", "-r", "-o", "-p", ".64", ".33", ".3", ".6", ".15", ".06", ".3333", ".3333", "xyz.hdr"],
           ["ra_xyze", "-e", "0.3", "radc.hdr"]]
+    for pixmap in ["wide.ppm", "small.pgm", "radc-100.ppm", "turned.pgm"]:
+        c += [["ra_ppm", "-r", pixmap], ["ra_ppm", "-r", "-g", "2.6", "-e", "+1", pixmap]]
+    c += [["ra_ppm", "-s", "100", "wide.hdr"], ["ra_ppm", "-r", "wide.hdr"]]
     c += [["pvalue", "-e", "+2", "wide.hdr"], ["pvalue", "-e", "0.5", "-R", "-d", "wide.hdr"],
           ["pvalue", "-di", "small.hdr"]]
     for d in DAMAGED:
         c += [["getinfo", d], ["getinfo", "-d", d], ["pvalue", d], ["pflip", "-h", d], ["protate", d],
-              ["ra_rgbe", d], ["ra_xyze", d]]
+              ["ra_rgbe", d], ["ra_xyze", d], ["ra_ppm", d]]
     c += [["getinfo", "small.hdr", "missing.hdr", "not-a-picture.hdr"],
           ["getinfo", "-d", "small.hdr", "missing.hdr", "not-a-picture.hdr"]]
     c += [["pvalue", "-r", "wide.txt"], ["pvalue", "-r", "-h", "-H", "-d", "-y", "22", "+x", "18", "tall-data.txt"],
@@ -165,7 +173,7 @@ STDIN_CASES = [
     (["pflip", "-h"], "wide.hdr"), (["pflip", "-h", "-"], "flipped.hdr"), (["pflip", "-v"], "wide.hdr"),
     (["pvalue"], "small.hdr"), (["pvalue", "-r"], "wide.txt"), (["pvalue", "-r", "-df"], "wide.float"),
     (["ra_rgbe", "-r"], "frames.hdr"), (["ra_rgbe", "-e", "+1", "-n", "2"], "frames.hdr"),
-    (["ra_rgbe", "-n", "3", "-"], "frames.hdr"), (["ra_xyze", "-r"], "xyz.hdr"), (["ra_rgbe"], "not-a-picture.hdr"), (["ra_rgbe", "-r"], "old-rle.hdr"),
+    (["ra_rgbe", "-n", "3", "-"], "frames.hdr"), (["ra_xyze", "-r"], "xyz.hdr"), (["ra_ppm"], "wide.hdr"), (["ra_ppm", "-r", "-a"], "wide.ppm"), (["ra_rgbe"], "not-a-picture.hdr"), (["ra_rgbe", "-r"], "old-rle.hdr"),
 ]
 
 

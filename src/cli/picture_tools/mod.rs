@@ -1,4 +1,4 @@
-//! The picture commands (`radc getinfo pvalue pflip protate ra_rgbe ra_xyze`): thin shells over
+//! The picture commands (`radc getinfo pvalue pflip protate ra_ppm ra_rgbe ra_xyze`): thin shells over
 //! `radc_picture` with the options, outputs and exit codes of Radiance's programs
 //! (1 for every error, usage errors included, as those programs exit). Messages name
 //! the file and, for damaged pictures, the byte offset.
@@ -7,6 +7,7 @@ pub mod getinfo;
 pub mod pflip;
 pub mod protate;
 pub mod pvalue;
+pub mod ra_ppm;
 pub mod ra_rgbe;
 pub mod ra_xyze;
 
