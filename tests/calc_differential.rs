@@ -13,9 +13,10 @@
 //!   exactly. rcalc's partial output before a fatal error is not compared;
 //! - warnings: radc's stderr is empty exactly when rcalc's was (the wording may differ).
 //!
-//! Until `radc calc` exists the test prints a notice and passes. Library cases need the
-//! oracle's `.cal` library (found through RAYPATH, as rcalc finds it); without `.oracle/`
-//! they are skipped with a message.
+//! The library cases need the oracle's `.cal` library (found through RAYPATH, as rcalc
+//! finds it), so they are a test of their own, skipped visibly without `.oracle/` and failed
+//! under `RADC_REQUIRE_ORACLE=1` (see the `radc-oracle` crate); the expression cases need
+//! nothing and always run.
 
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -141,17 +142,6 @@ fn parse_goldens(text: &str) -> Vec<(String, Golden)> {
         ));
     }
     goldens
-}
-
-/// The oracle's library directory, where rcalc finds `-f file.cal` through RAYPATH.
-fn oracle_library() -> Option<PathBuf> {
-    let lib = Path::new(env!("CARGO_MANIFEST_DIR")).join(".oracle/lib");
-    let entries = std::fs::read_dir(&lib).ok()?;
-    entries
-        .filter_map(Result::ok)
-        .filter(|e| e.file_name().to_string_lossy().starts_with("python3"))
-        .map(|e| e.path().join("site-packages/pyradiance/lib"))
-        .find(|p| p.is_dir())
 }
 
 fn run_radc(args: &[String], stdin_rows: &[String], raypath: &str) -> Outcome {
@@ -318,34 +308,36 @@ fn run_set(name: &str, engine: &[&str], raypath: &str, failures: &mut Vec<String
     cases.len()
 }
 
-#[test]
-fn radc_calc_matches_rcalc() {
-    let library = oracle_library();
-    let raypath = match &library {
-        Some(lib) => format!(".:{}", lib.display()),
-        None => ".".to_string(),
-    };
+/// Replays one case set with both engines and fails listing every difference.
+fn assert_set_matches(name: &str, raypath: &str) {
     let mut failures = Vec::new();
     let mut total = 0;
     for engine in ENGINES {
-        total += run_set("expressions", engine, &raypath, &mut failures);
-    }
-    if library.is_some() {
-        for engine in ENGINES {
-            total += run_set("library", engine, &raypath, &mut failures);
-        }
-    } else {
-        eprintln!(
-            "notice: no .oracle/ Radiance library found; skipping the library cases \
-             (install it with tests/oracle/install.sh)"
-        );
+        total += run_set(name, engine, raypath, &mut failures);
     }
     assert!(
         failures.is_empty(),
-        "{} of {total} calc cases differ from rcalc:\n{}",
+        "{} of {total} {name} cases differ from rcalc:\n{}",
         failures.len(),
         failures.join("\n")
     );
+}
+
+#[test]
+fn radc_calc_matches_rcalc() {
+    assert_set_matches("expressions", ".");
+}
+
+/// The cases that load Radiance's library with `-f`, found along RAYPATH as rcalc found
+/// them when the goldens were made.
+#[test]
+fn radc_calc_matches_rcalc_on_library_files() {
+    let Some(lib) =
+        radc_oracle::library_or_skip("calc_differential::radc_calc_matches_rcalc_on_library_files")
+    else {
+        return;
+    };
+    assert_set_matches("library", &format!(".:{}", lib.display()));
 }
 
 #[test]

@@ -92,9 +92,26 @@ fn formatting_the_corpora_keeps_meaning() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
     scenes(&root.join("tests/data"), &mut files);
-    scenes(&root.join("../shared/corpus/radiance"), &mut files);
     scenes(&root.join("examples"), &mut files);
-    assert!(files.len() > 10, "corpora found: {}", files.len());
+    assert_formatting_keeps_meaning(files);
+}
+
+/// The same for Radiance's test scenes in `../shared/corpus` (skipped visibly without it).
+#[test]
+fn formatting_the_shared_corpus_keeps_meaning() {
+    let Some(corpus) =
+        radc_oracle::shared_corpus_or_skip("fmt_cli::formatting_the_shared_corpus_keeps_meaning")
+    else {
+        return;
+    };
+    let mut files = Vec::new();
+    scenes(&corpus, &mut files);
+    assert_formatting_keeps_meaning(files);
+}
+
+/// Formats each file twice (idempotent) and checks it again (same diagnostics).
+fn assert_formatting_keeps_meaning(files: Vec<PathBuf>) {
+    assert!(files.len() > 10, "scenes found: {}", files.len());
     let mut db = Database::default();
     let mut formatted_count = 0;
     for path in files {

@@ -176,7 +176,7 @@ struct Workspace {
 fn workspace() -> Workspace {
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("scene.rad");
-    let uri = format!("file://{}", path.display());
+    let uri = file_uri(&path);
     Workspace {
         _dir: dir,
         path,
@@ -569,6 +569,14 @@ fn never_runs_commands_and_survives_nonsense() {
     client.shutdown();
 }
 
+/// [`codes`] without W0307: the tests of function files use patterns, which the
+/// renderer does not run yet; what they test is what the checker finds.
+fn checked_codes(published: &Value) -> Vec<String> {
+    let mut c = codes(published);
+    c.retain(|c| c != "W0307");
+    c
+}
+
 fn codes(published: &Value) -> Vec<String> {
     published["diagnostics"]
         .as_array()
@@ -593,7 +601,7 @@ fn saves_and_raypath_settings_recheck_auxiliary_files() {
 
     open(&mut client, uri, &scene("funcs.cal"));
     let published = client.notification("textDocument/publishDiagnostics");
-    assert_eq!(codes(&published), ["E0305"]);
+    assert_eq!(checked_codes(&published), ["E0305"]);
     assert_eq!(
         published["diagnostics"][0]["message"],
         "file 'funcs.cal' not found"
@@ -606,7 +614,7 @@ fn saves_and_raypath_settings_recheck_auxiliary_files() {
         json!({"textDocument": {"uri": uri}}),
     );
     assert_eq!(
-        codes(&client.notification("textDocument/publishDiagnostics")),
+        checked_codes(&client.notification("textDocument/publishDiagnostics")),
         Vec::<String>::new()
     );
 
@@ -616,7 +624,7 @@ fn saves_and_raypath_settings_recheck_auxiliary_files() {
     std::fs::write(lib.join("other.cal"), "refl = 1;\n").expect("write cal");
     change(&mut client, uri, 2, &scene("other.cal"));
     assert_eq!(
-        codes(&client.notification("textDocument/publishDiagnostics")),
+        checked_codes(&client.notification("textDocument/publishDiagnostics")),
         ["E0305"]
     );
     client.notify(
@@ -624,7 +632,7 @@ fn saves_and_raypath_settings_recheck_auxiliary_files() {
         json!({"settings": {"radc": {"raypath": [lib.display().to_string()]}}}),
     );
     assert_eq!(
-        codes(&client.notification("textDocument/publishDiagnostics")),
+        checked_codes(&client.notification("textDocument/publishDiagnostics")),
         Vec::<String>::new()
     );
     client.shutdown();
@@ -642,8 +650,8 @@ fn a_rif_makes_its_files_one_scene() {
     .expect("mat");
     std::fs::write(dir.join("walls.rad"), walls).expect("walls");
     std::fs::write(dir.join("alone.rad"), walls).expect("alone");
-    let walls_uri = format!("file://{}", dir.join("walls.rad").display());
-    let alone_uri = format!("file://{}", dir.join("alone.rad").display());
+    let walls_uri = file_uri(&dir.join("walls.rad"));
+    let alone_uri = file_uri(&dir.join("alone.rad"));
     let mut client = Client::start();
     initialize(&mut client, json!(null));
 
@@ -727,7 +735,7 @@ fn rif_documents_get_no_analysis() {
     let dir = ws.path.parent().expect("folder").to_path_buf();
     let mut client = Client::start();
     initialize(&mut client, json!(null));
-    let uri = format!("file://{}", dir.join("p.rif").display());
+    let uri = file_uri(&dir.join("p.rif"));
     open(&mut client, &uri, "scene = a.rad\n");
     let hover = client.request(
         "textDocument/hover",
@@ -845,6 +853,20 @@ fn built_in_generators_expand_as_radc_check_expands_them() {
     client.shutdown();
 }
 
+/// `path` as a `file:` URI, percent-encoded: the shared corpus has folders with spaces in
+/// their names (`test/test data/`), which a URI cannot hold as they are.
+fn file_uri(path: &std::path::Path) -> String {
+    let mut uri = String::from("file://");
+    for &b in path.to_string_lossy().as_bytes() {
+        if b.is_ascii_alphanumeric() || b"/-._~".contains(&b) {
+            uri.push(char::from(b));
+        } else {
+            uri.push_str(&format!("%{b:02X}"));
+        }
+    }
+    uri
+}
+
 fn corpus_scenes(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
@@ -859,14 +881,34 @@ fn corpus_scenes(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
     }
 }
 
-/// Every scene of the test corpora gets the same codes and messages from the server
-/// as from `radc check FILE`.
+/// Every scene of the own corpus gets the same codes and messages from the server as
+/// from `radc check FILE`.
 #[test]
 fn the_server_says_what_radc_check_says_across_the_corpora() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
     corpus_scenes(&root.join("tests/data/scenes"), &mut files);
-    corpus_scenes(&root.join("../shared/corpus/radiance"), &mut files);
+    assert_server_says_what_radc_check_says(files, 50);
+}
+
+/// The same for Radiance's test scenes in `../shared/corpus` (skipped visibly without it).
+#[test]
+fn the_server_says_what_radc_check_says_across_the_shared_corpus() {
+    let Some(corpus) = radc_oracle::shared_corpus_or_skip(
+        "lsp_e2e::the_server_says_what_radc_check_says_across_the_shared_corpus",
+    ) else {
+        return;
+    };
+    let mut files = Vec::new();
+    corpus_scenes(&corpus, &mut files);
+    // Most of them sit beside a `.rif` and are left out (see below).
+    assert_server_says_what_radc_check_says(files, 10);
+}
+
+/// Opens each scene in one server and compares what it publishes with `radc check`; at
+/// least `at_least` scenes must be compared.
+fn assert_server_says_what_radc_check_says(mut files: Vec<std::path::PathBuf>, at_least: usize) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     files.sort();
     let mut client = Client::start();
     initialize(&mut client, json!(null));
@@ -887,7 +929,7 @@ fn the_server_says_what_radc_check_says_across_the_corpora() {
         if has_rif {
             continue;
         }
-        let uri = format!("file://{}", path.display());
+        let uri = file_uri(&path);
         open(&mut client, &uri, &text);
         let published = loop {
             let p = client.notification("textDocument/publishDiagnostics");
@@ -907,7 +949,7 @@ fn the_server_says_what_radc_check_says_across_the_corpora() {
     }
     client.shutdown();
     eprintln!("compared {compared} scenes");
-    assert!(compared > 50, "compared {compared}");
+    assert!(compared >= at_least, "compared {compared}");
     assert!(
         mismatches.is_empty(),
         "{} of {compared} differ:\n{}",
@@ -925,8 +967,8 @@ fn calcomp_workspace() -> (tempfile::TempDir, String, String, std::path::PathBuf
     let root = dir.path().canonicalize().expect("canonical");
     std::fs::write(root.join("f.cal"), CAL).expect("cal");
     std::fs::write(root.join("shaded.rad"), SHADED).expect("scene");
-    let cal = format!("file://{}", root.join("f.cal").display());
-    let scene = format!("file://{}", root.join("shaded.rad").display());
+    let cal = file_uri(&root.join("f.cal"));
+    let scene = file_uri(&root.join("shaded.rad"));
     (dir, cal, scene, root)
 }
 
@@ -1106,7 +1148,7 @@ fn an_unsaved_function_file_is_what_scenes_read() {
     open(&mut client, &scene, SHADED);
     let published = client.notification("textDocument/publishDiagnostics");
     assert_eq!(
-        (published["uri"].as_str(), codes(&published)),
+        (published["uri"].as_str(), checked_codes(&published)),
         (Some(scene.as_str()), vec![])
     );
     // An unsaved edit of the function file is what the scene's check reads.
@@ -1115,7 +1157,7 @@ fn an_unsaved_function_file_is_what_scenes_read() {
     for _ in 0..3 {
         let published = client.notification("textDocument/publishDiagnostics");
         if published["uri"] == scene.as_str() {
-            scene_codes = Some(codes(&published));
+            scene_codes = Some(checked_codes(&published));
             break;
         }
     }
@@ -1129,7 +1171,7 @@ fn an_unsaved_function_file_is_what_scenes_read() {
     loop {
         let published = client.notification("textDocument/publishDiagnostics");
         if published["uri"] == scene.as_str() {
-            assert_eq!(codes(&published), Vec::<String>::new());
+            assert_eq!(checked_codes(&published), Vec::<String>::new());
             break;
         }
     }
@@ -1180,7 +1222,7 @@ fn semantic_tokens_say_what_each_word_is() {
             0, 0, 2, 2, 3, 0
         ])
     );
-    let cal = format!("file://{}", dir.join("g.cal").display());
+    let cal = file_uri(&dir.join("g.cal"));
     open(&mut client, &cal, "f(x) = sin(x)*2;\n");
     let tokens = client.request(
         "textDocument/semanticTokens/full",
@@ -1244,7 +1286,7 @@ fn renaming_a_material_reaches_the_scenes_of_its_rif() {
         "materials = basic.mat\nscene = walls.rad table.rad\n",
     )
     .expect("rif");
-    let uri = |name: &str| format!("file://{}", root.join(name).display());
+    let uri = |name: &str| file_uri(&root.join(name));
     let mut client = Client::start();
     initialize(&mut client, json!(null));
     open(&mut client, &uri("basic.mat"), mat);
@@ -1305,7 +1347,7 @@ fn an_edit_reparses_only_the_edited_file() {
     client.notify("textDocument/didChange", one_char(2, 8, 3, 4, "6"));
     let published = client.notification("textDocument/publishDiagnostics");
     assert_eq!(
-        (published["version"].clone(), codes(&published)),
+        (published["version"].clone(), checked_codes(&published)),
         (json!(2), Vec::<String>::new())
     );
     assert_eq!(

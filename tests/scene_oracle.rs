@@ -5,7 +5,13 @@
 //! Radiance, so this test needs no Python.
 //!
 //! Each scene is checked from its own folder, as Radiance ran it, so relative `.cal`, `.dat`,
-//! picture and octree names resolve the same way.
+//! picture and octree names resolve the same way. Radiance ran with its library on RAYPATH;
+//! the golden lists, per scene, the library files the scene names (`library_files`). Scenes
+//! that name none are checked with no RAYPATH at all, on every machine, and every error
+//! counts: a missing file is a real error there. Scenes that name some are compared only
+//! with the oracle's library on RAYPATH, as Radiance saw them, in tests of their own that
+//! are skipped visibly without the oracle (and fail under `RADC_REQUIRE_ORACLE=1`; see the
+//! `radc-oracle` crate). Scenes of `../shared/corpus` likewise need that folder.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -17,7 +23,6 @@ use serde_json::Value;
 
 const WORKSPACE: &str = env!("CARGO_MANIFEST_DIR");
 const ORACLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/scenes/oracle.json");
-const SHARED_CORPUS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus/radiance");
 /// Keys of shared-corpus scenes in oracle.json start with this.
 const SHARED_KEY: &str = "../shared/corpus/radiance/";
 /// Where the corpus' own scenes live, relative to the workspace root.
@@ -32,6 +37,19 @@ struct Verdict {
     key: String,
     accepted: bool,
     radiance_says: String,
+    /// Files of Radiance's library the scene names: found along RAYPATH by Radiance, so
+    /// radc can judge the scene as Radiance did only with the same library.
+    library_files: Vec<String>,
+}
+
+impl Verdict {
+    fn is_shared(&self) -> bool {
+        self.key.starts_with(SHARED_KEY)
+    }
+
+    fn needs_library(&self) -> bool {
+        !self.library_files.is_empty()
+    }
 }
 
 fn verdicts() -> Vec<Verdict> {
@@ -41,6 +59,19 @@ fn verdicts() -> Vec<Verdict> {
     map.iter()
         .map(|(key, v)| {
             let flag = |name: &str| v.get(name).and_then(Value::as_bool).unwrap_or(false);
+            let library_files = v
+                .get("library_files")
+                .and_then(Value::as_array)
+                .unwrap_or_else(|| {
+                    panic!("{key}: no library_files: run tests/oracle/regen_scene_goldens.py")
+                })
+                .iter()
+                .map(|f| {
+                    f.as_str()
+                        .expect("library file names are strings")
+                        .to_owned()
+                })
+                .collect();
             Verdict {
                 key: key.clone(),
                 accepted: flag("oconv_ok") && flag("render_ok"),
@@ -49,6 +80,7 @@ fn verdicts() -> Vec<Verdict> {
                     .and_then(Value::as_str)
                     .unwrap_or_default()
                     .to_owned(),
+                library_files,
             }
         })
         .collect()
@@ -58,24 +90,23 @@ fn verdicts() -> Vec<Verdict> {
 enum CheckOutcome {
     /// It ran: the error-severity diagnostics it printed (code and message).
     Diagnosed(Vec<String>),
-    /// This build of radc has no `check` command yet.
-    NoCheckCommand,
     /// It crashed, printed something that is not one JSON object per line, or its exit
     /// status contradicts its diagnostics.
     Broken(String),
 }
 
-fn check(scene: &Path) -> CheckOutcome {
+/// Runs `radc check` on `scene` from the scene's folder, with RAYPATH `.` and `library`
+/// when given, else with no RAYPATH.
+fn check(scene: &Path, library: Option<&Path>) -> CheckOutcome {
     let (Some(dir), Some(name)) = (scene.parent(), scene.file_name()) else {
         return CheckOutcome::Broken(format!("bad scene path {}", scene.display()));
     };
-    // Radiance ran with its library on RAYPATH; radc must see the same files.
     let mut command = Command::new(env!("CARGO_BIN_EXE_radc"));
     command
         .args(["check", "--format", "json"])
         .arg(name)
         .current_dir(dir);
-    match oracle_lib() {
+    match library {
         Some(lib) => command.env("RAYPATH", format!(".:{}", lib.display())),
         None => command.env_remove("RAYPATH"),
     };
@@ -85,20 +116,13 @@ fn check(scene: &Path) -> CheckOutcome {
     };
     let stderr = String::from_utf8_lossy(&output.stderr);
     let code = output.status.code();
-    if code == Some(2) && stderr.contains("unknown command") {
-        return CheckOutcome::NoCheckCommand;
-    }
     let stdout = String::from_utf8_lossy(&output.stdout);
     let mut errors = Vec::new();
     for line in stdout.lines().filter(|l| !l.trim().is_empty()) {
         let Ok(diagnostic) = serde_json::from_str::<Value>(line) else {
             return CheckOutcome::Broken(format!("stdout line is not JSON: {line}"));
         };
-        let is_error = diagnostic.get("severity").and_then(Value::as_str) == Some("error");
-        // Without the oracle's library, files Radiance found there look missing.
-        let library_file = oracle_lib().is_none()
-            && diagnostic.get("code").and_then(Value::as_str) == Some("E0305");
-        if is_error && !library_file {
+        if diagnostic.get("severity").and_then(Value::as_str) == Some("error") {
             let field = |k: &str| diagnostic.get(k).and_then(Value::as_str).unwrap_or("?");
             errors.push(format!(
                 "{} {}:{}: {}",
@@ -172,16 +196,13 @@ fn run_with_timeout(mut command: Command) -> Result<Output, String> {
     })
 }
 
-/// Checks every scene against its verdict and panics listing all mismatches at once.
-/// Returns early (passing) when radc has no `check` command yet.
-fn assert_radc_agrees(scenes: &[(PathBuf, &Verdict)], corpus: &str) {
+/// Checks every scene against its verdict (RAYPATH as [`check`] sets it from `library`) and
+/// panics listing all mismatches at once.
+fn assert_radc_agrees(scenes: &[(PathBuf, &Verdict)], corpus: &str, library: Option<&Path>) {
+    assert!(!scenes.is_empty(), "oracle.json lists no {corpus} scenes");
     let mut mismatches = Vec::new();
     for (path, verdict) in scenes {
-        match check(path) {
-            CheckOutcome::NoCheckCommand => {
-                eprintln!("notice: `radc check` does not exist yet; {corpus} oracle test skipped");
-                return;
-            }
+        match check(path, library) {
             CheckOutcome::Broken(why) => mismatches.push(format!("{}: {why}", verdict.key)),
             CheckOutcome::Diagnosed(errors) if verdict.accepted && !errors.is_empty() => {
                 mismatches.push(format!(
@@ -208,42 +229,85 @@ fn assert_radc_agrees(scenes: &[(PathBuf, &Verdict)], corpus: &str) {
     );
 }
 
-#[test]
-fn own_corpus_verdicts_match_radiance() {
-    let verdicts = verdicts();
-    let scenes: Vec<_> = verdicts
+/// The own corpus' scenes (paths from the workspace) that do or do not name library files.
+fn own_scenes(verdicts: &[Verdict], library: bool) -> Vec<(PathBuf, &Verdict)> {
+    verdicts
         .iter()
-        .filter(|v| !v.key.starts_with(SHARED_KEY))
+        .filter(|v| !v.is_shared() && v.needs_library() == library)
         .map(|v| (Path::new(WORKSPACE).join(&v.key), v))
-        .collect();
-    assert!(!scenes.is_empty(), "oracle.json lists no corpus scenes");
-    assert_radc_agrees(&scenes, "corpus");
+        .collect()
 }
 
-#[test]
-fn shared_radiance_corpus_verdicts_match_radiance() {
-    let root = Path::new(SHARED_CORPUS);
-    if !root.is_dir() {
-        eprintln!("notice: {SHARED_CORPUS} is absent; shared-corpus oracle test skipped");
-        return;
-    }
-    let verdicts = verdicts();
-    // Scenes with `!` lines are included: radc expands genbox, genprism and xform
-    // (pipelines too) itself, and reports other commands as not expanded, which
-    // agrees with Radiance's verdict on every one of them.
-    let scenes: Vec<_> = verdicts
+/// The shared corpus' scenes (paths from `root`) that do or do not name library files.
+/// Scenes with `!` lines are included: radc expands genbox, genprism and xform (pipelines
+/// too) itself, and reports other commands as not expanded, which agrees with Radiance's
+/// verdict on every one of them.
+fn shared_scenes<'a>(
+    verdicts: &'a [Verdict],
+    root: &Path,
+    library: bool,
+) -> Vec<(PathBuf, &'a Verdict)> {
+    verdicts
         .iter()
+        .filter(|v| v.needs_library() == library)
         .filter_map(|v| {
             v.key
                 .strip_prefix(SHARED_KEY)
                 .map(|rel| (root.join(rel), v))
         })
-        .collect();
-    assert!(
-        !scenes.is_empty(),
-        "oracle.json lists no shared-corpus scenes"
+        .collect()
+}
+
+/// The own corpus' scenes that name no library file, on any machine.
+#[test]
+fn own_corpus_verdicts_match_radiance() {
+    let verdicts = verdicts();
+    assert_radc_agrees(&own_scenes(&verdicts, false), "corpus", None);
+}
+
+/// The own corpus' scenes that name library files (gensky's `skybright.cal`, genrev's
+/// `rev.cal`, ...), with the oracle's library on RAYPATH.
+#[test]
+fn own_corpus_library_scenes_match_radiance() {
+    let Some(lib) =
+        radc_oracle::library_or_skip("scene_oracle::own_corpus_library_scenes_match_radiance")
+    else {
+        return;
+    };
+    let verdicts = verdicts();
+    assert_radc_agrees(&own_scenes(&verdicts, true), "corpus library", Some(&lib));
+}
+
+/// Radiance's test scenes that name no library file.
+#[test]
+fn shared_radiance_corpus_verdicts_match_radiance() {
+    let Some(root) = radc_oracle::shared_corpus_or_skip(
+        "scene_oracle::shared_radiance_corpus_verdicts_match_radiance",
+    ) else {
+        return;
+    };
+    let verdicts = verdicts();
+    assert_radc_agrees(
+        &shared_scenes(&verdicts, &root, false),
+        "shared Radiance",
+        None,
     );
-    assert_radc_agrees(&scenes, "shared Radiance");
+}
+
+/// Radiance's test scenes that name library files, with the oracle's library on RAYPATH.
+#[test]
+fn shared_radiance_corpus_library_scenes_match_radiance() {
+    let Some((root, lib)) = radc_oracle::shared_corpus_and_library_or_skip(
+        "scene_oracle::shared_radiance_corpus_library_scenes_match_radiance",
+    ) else {
+        return;
+    };
+    let verdicts = verdicts();
+    assert_radc_agrees(
+        &shared_scenes(&verdicts, &root, true),
+        "shared Radiance library",
+        Some(&lib),
+    );
 }
 
 /// A scene added to a corpus folder without regenerating the goldens would go untested.
@@ -275,15 +339,4 @@ fn every_corpus_scene_has_a_verdict() {
         "run tests/oracle/regen_scene_goldens.py; out of date for:\n{}",
         missing.join("\n")
     );
-}
-
-/// The Radiance library of the installed oracle (`.oracle/lib/python3*/site-packages/
-/// pyradiance/lib`), if there is one.
-fn oracle_lib() -> Option<PathBuf> {
-    let lib = Path::new(WORKSPACE).join(".oracle/lib");
-    std::fs::read_dir(&lib)
-        .ok()?
-        .flatten()
-        .map(|e| e.path().join("site-packages/pyradiance/lib"))
-        .find(|p| p.is_dir())
 }

@@ -5,8 +5,15 @@
 //! JIT's compile time. Library programs need the oracle (`tests/oracle/install.sh`);
 //! without it only the self-contained programs run.
 //!
-//! Last, "library compile": every definition of every `.cal` file of the library
-//! compiled, one program per file (after `rayinit.cal`, as the renderer loads it).
+//! Then "library compile": every definition of every `.cal` file of the library
+//! compiled, one program per file (after `rayinit.cal`, as the renderer loads it); and
+//! "inline budget": the compile time of xyz_rgb.cal's colour conversion (the program that
+//! once took 1.8 s to compile) at several inlining budgets, with the code size of each
+//! printed before it runs (`jit/tests/jit_compile_size.rs` holds the bounds as tests).
+//!
+//! To profile one program, run a single group for a fixed time under the profiler:
+//! `valgrind --tool=callgrind target/release/deps/calc-* --bench --profile-time 10 'sun.cal'`
+//! (the per-record groups time the JIT and the interpreter on the same rows).
 //!
 //! Times are the bench thread's CPU time, not wall-clock time (see [`CpuTime`]).
 //!
@@ -23,7 +30,8 @@ use std::path::PathBuf;
 
 #[path = "../tests/support/library.rs"]
 mod library;
-use library::{library_dir, library_programs};
+use library::library_programs;
+use radc_oracle::library as library_dir;
 
 /// The machine is shared: wall-clock time mostly measures the other processes, so
 /// this bench measures the thread's own CPU time (`CLOCK_THREAD_CPUTIME_ID`; the
@@ -322,9 +330,46 @@ fn bench_library(c: &mut Criterion<CpuTime>) {
     group.finish();
 }
 
+/// xyz_rgb.cal's four outputs as `radc calc -f xyz_rgb.cal -e '$1=X($1,$2,$3);...'` builds
+/// them, compiled at inlining budgets from none to six times the default (1000 nodes).
+fn bench_inline_budget(c: &mut Criterion<CpuTime>) {
+    let Some(text) =
+        library_dir().and_then(|lib| std::fs::read_to_string(lib.join("xyz_rgb.cal")).ok())
+    else {
+        return;
+    };
+    let mut m = Module::new(&Env::rcalc());
+    m.add_source(FileId(0), &text);
+    let d = m.add_source(
+        FileId(1),
+        "$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)",
+    );
+    if d.iter().any(|d| d.is_error()) {
+        eprintln!("notice: xyz_rgb.cal does not check");
+        return;
+    }
+    m.optimize();
+    let mut group = c.benchmark_group("inline budget (xyz_rgb.cal)");
+    group.sample_size(10);
+    for budget in [0, 250, 500, 1000, 2000, 3000, 6000] {
+        let compile = || Jit::new().with_inline_budget(budget).compile(&m, &["$*"]);
+        match compile() {
+            Ok(p) => eprintln!("budget {budget}: {} instructions", p.instruction_count()),
+            Err(e) => {
+                eprintln!("notice: budget {budget}: not compiled: {e}");
+                continue;
+            }
+        }
+        group.bench_function(format!("budget {budget}"), |b| {
+            b.iter(|| black_box(compile().is_ok()))
+        });
+    }
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().with_measurement(CpuTime);
-    targets = bench, bench_library
+    targets = bench, bench_library, bench_inline_budget
 }
 criterion_main!(benches);

@@ -1,8 +1,9 @@
 //! Data-file interpolation against Radiance: replays the goldens written by
 //! `tests/oracle/regen_datafile_goldens.py` (rtrace evaluating a `brightdata` pattern) and
 //! requires the same single-precision value at every query point. Data files come from
-//! Radiance's test scenes in `../shared/corpus` (read in place; skipped with a notice when
-//! that directory is absent) and from `tests/data/datafile`.
+//! `tests/data/datafile` (always compared) and from Radiance's test scenes in
+//! `../shared/corpus` (read in place; the tests of those are skipped visibly when that
+//! folder is absent, and fail under `RADC_REQUIRE_ORACLE=1`: see the `radc-oracle` crate).
 
 use std::path::{Path, PathBuf};
 
@@ -15,35 +16,46 @@ fn repo_root() -> PathBuf {
         .to_path_buf()
 }
 
-/// The data file a golden's `# source:` line names, if it is present.
-fn source_path(label: &str) -> Option<PathBuf> {
-    let root = repo_root();
-    let path = match label.split_once(' ')? {
-        ("corpus", name) => root
-            .join("../shared/corpus/radiance/test/renders")
-            .join(name),
-        ("local", name) => root.join("tests/data/datafile").join(name),
-        _ => panic!("unknown golden source {label:?}"),
-    };
-    path.is_file().then_some(path)
+/// The goldens whose `# source:` line names a data file of `origin` (`local` or
+/// `corpus`), each with the data file's name.
+fn goldens(origin: &str) -> Vec<(PathBuf, String)> {
+    let dir = repo_root().join("tests/data/datafile/goldens");
+    let mut goldens: Vec<(PathBuf, String)> = std::fs::read_dir(&dir)
+        .expect("golden directory")
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "golden"))
+        .filter_map(|p| {
+            let text = std::fs::read_to_string(&p).expect("read golden");
+            let label = text
+                .lines()
+                .find_map(|l| l.strip_prefix("# source: "))
+                .unwrap_or_else(|| panic!("{} names no source", p.display()))
+                .to_owned();
+            let (from, name) = label
+                .split_once(' ')
+                .unwrap_or_else(|| panic!("bad golden source {label:?}"));
+            assert!(
+                matches!(from, "local" | "corpus"),
+                "unknown golden source {label:?}"
+            );
+            (from == origin).then(|| (p, name.to_owned()))
+        })
+        .collect();
+    goldens.sort();
+    assert!(
+        !goldens.is_empty(),
+        "no {origin} goldens in {}",
+        dir.display()
+    );
+    goldens
 }
 
-/// Compares one golden file; returns (points checked, mismatches), or None if its data file
-/// is not available here.
-fn check_golden(golden: &Path) -> Option<(usize, Vec<String>)> {
+/// Compares one golden file against the data file it was made from; returns (points
+/// checked, mismatches).
+fn check_golden(golden: &Path, path: &Path) -> (usize, Vec<String>) {
     let text = std::fs::read_to_string(golden).expect("read golden");
-    let label = text
-        .lines()
-        .find_map(|l| l.strip_prefix("# source: "))
-        .expect("golden names its source");
-    let Some(path) = source_path(label) else {
-        eprintln!(
-            "notice: {label} is not available; skipping {}",
-            golden.display()
-        );
-        return None;
-    };
-    let data = DataFile::parse(&std::fs::read_to_string(&path).expect("read data file"))
+    let data = DataFile::parse(&std::fs::read_to_string(path).expect("read data file"))
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let name = golden
         .file_name()
@@ -68,28 +80,26 @@ fn check_golden(golden: &Path) -> Option<(usize, Vec<String>)> {
         }
         checked += 1;
     }
-    Some((checked, mismatches))
+    (checked, mismatches)
 }
 
-#[test]
-fn interpolation_matches_rtrace() {
-    let dir = repo_root().join("tests/data/datafile/goldens");
-    let mut goldens: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("golden directory")
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "golden"))
-        .collect();
-    goldens.sort();
-    assert!(!goldens.is_empty(), "no goldens in {}", dir.display());
+/// Every golden of `origin`, its data file found in `folder`; all mismatches at once.
+fn assert_goldens_match(origin: &str, folder: &Path) {
     let mut total = 0;
     let mut mismatches = Vec::new();
-    for golden in &goldens {
-        if let Some((n, bad)) = check_golden(golden) {
-            total += n;
-            mismatches.extend(bad);
-        }
+    for (golden, name) in goldens(origin) {
+        let path = folder.join(&name);
+        assert!(
+            path.is_file(),
+            "{}: data file {} is missing",
+            golden.display(),
+            path.display()
+        );
+        let (n, bad) = check_golden(&golden, &path);
+        total += n;
+        mismatches.extend(bad);
     }
+    assert!(total > 0, "the {origin} goldens hold no points");
     assert!(
         mismatches.is_empty(),
         "{} of {total} points differ from rtrace:\n{}",
@@ -98,22 +108,43 @@ fn interpolation_matches_rtrace() {
     );
 }
 
+#[test]
+fn interpolation_matches_rtrace() {
+    assert_goldens_match("local", &repo_root().join("tests/data/datafile"));
+}
+
+/// The same for the data files of Radiance's test scenes.
+#[test]
+fn interpolation_matches_rtrace_on_corpus_data_files() {
+    let Some(corpus) = radc_oracle::shared_corpus_or_skip(
+        "datafile_oracle::interpolation_matches_rtrace_on_corpus_data_files",
+    ) else {
+        return;
+    };
+    assert_goldens_match("corpus", &corpus.join("test/renders"));
+}
+
 /// Radiance's own test data files all load, whatever their layout.
 #[test]
 fn corpus_data_files_parse() {
-    let dir = repo_root().join("../shared/corpus/radiance/test/renders");
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        eprintln!("notice: {} not found; skipping", dir.display());
+    let Some(corpus) =
+        radc_oracle::shared_corpus_or_skip("datafile_oracle::corpus_data_files_parse")
+    else {
         return;
     };
+    let dir = corpus.join("test/renders");
+    let entries = std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    let mut parsed = 0;
     for path in entries.filter_map(Result::ok).map(|e| e.path()) {
         if path.extension().is_some_and(|x| x == "dat") {
             let text = std::fs::read_to_string(&path).expect("read data file");
             if let Err(e) = DataFile::parse(&text) {
                 panic!("{}: {e}", path.display());
             }
+            parsed += 1;
         }
     }
+    assert!(parsed > 0, "no .dat files in {}", dir.display());
 }
 
 /// Radiance's message class for a load error. Radiance words it "unexpected EOF" whenever

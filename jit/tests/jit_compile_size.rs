@@ -12,7 +12,7 @@ use radc_lang::cal::{Env, Module};
 
 #[path = "support/library.rs"]
 mod library;
-use library::{library_dir, library_programs};
+use library::library_programs;
 
 fn module(sources: &[&str], env: &Env) -> Module {
     let mut m = Module::new(env);
@@ -123,14 +123,11 @@ fn bounded_program_agrees_with_the_interpreter() {
 /// '$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)'`.
 #[test]
 fn xyz_rgb_compiles_small() {
-    let Some(lib) = library_dir() else {
-        eprintln!("notice: no .oracle/ library: skipped");
+    let Some(lib) = radc_oracle::library_or_skip("jit_compile_size::xyz_rgb_compiles_small") else {
         return;
     };
-    let Ok(text) = std::fs::read_to_string(lib.join("xyz_rgb.cal")) else {
-        eprintln!("notice: no xyz_rgb.cal: skipped");
-        return;
-    };
+    let text = std::fs::read_to_string(lib.join("xyz_rgb.cal"))
+        .unwrap_or_else(|e| panic!("the oracle's library has no xyz_rgb.cal: {e}"));
     let m = module(
         &[
             &text,
@@ -152,12 +149,20 @@ fn xyz_rgb_compiles_small() {
 /// bounded amount of code.
 #[test]
 fn every_library_file_compiles_small() {
-    let Some(lib) = library_dir() else {
-        eprintln!("notice: no .oracle/ library: skipped");
+    let Some(lib) =
+        radc_oracle::library_or_skip("jit_compile_size::every_library_file_compiles_small")
+    else {
         return;
     };
+    let programs = library_programs(&lib);
+    assert!(
+        programs.len() > 50,
+        "only {} library programs from {}",
+        programs.len(),
+        lib.display()
+    );
     let mut worst = (0, String::new());
-    for (name, m, names) in library_programs(&lib) {
+    for (name, m, names) in programs {
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
         let Ok(c) = Jit::new().compile(&m, &names) else {
             continue;
@@ -173,119 +178,4 @@ fn every_library_file_compiles_small() {
     );
     // rayinit.cal, every definition: 15,582 with the default budget.
     assert!(worst.0 < 24_000, "{} instructions for {}", worst.0, worst.1);
-}
-
-/// Not a test: compile time and code size of xyz_rgb.cal against the budget
-/// (`cargo test --release --test jit_compile_size -- --ignored --nocapture`).
-#[test]
-#[ignore]
-fn budget_survey() {
-    let Some(lib) = library_dir() else { return };
-    let Ok(text) = std::fs::read_to_string(lib.join("xyz_rgb.cal")) else {
-        return;
-    };
-    let m = module(
-        &[
-            &text,
-            "$1=X($1,$2,$3);$2=Y($1,$2,$3);$3=Z($1,$2,$3);$4=luminance($1,$2,$3)",
-        ],
-        &Env::rcalc(),
-    );
-    let mut times = Vec::new();
-    for (name, m, names) in library_programs(&lib) {
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let mut best = std::time::Duration::MAX;
-        for _ in 0..3 {
-            let t = std::time::Instant::now();
-            let _ = Jit::new().compile(&m, &names);
-            best = best.min(t.elapsed());
-        }
-        times.push((best, name));
-    }
-    times.sort();
-    let k = times.len();
-    if k > 0 {
-        eprintln!(
-            "library files: {k}, median {:?}, 90th percentile {:?}, largest {:?}",
-            times[k / 2].0,
-            times[k * 9 / 10].0,
-            &times[k.saturating_sub(5)..]
-        );
-    }
-    for budget in [0, 250, 500, 1000, 2000, 3000, 6000] {
-        let t = std::time::Instant::now();
-        let c = Jit::new()
-            .with_inline_budget(budget)
-            .compile(&m, &["$*"])
-            .expect("compiles");
-        eprintln!(
-            "budget {budget}: {} instructions, {:?}",
-            c.instruction_count(),
-            t.elapsed()
-        );
-    }
-}
-
-/// Not a test: a loop to profile (`valgrind --tool=callgrind` on the test binary
-/// with `--ignored profile_loop`), `RADC_PROFILE` = `sun` or `cielab`.
-#[test]
-#[ignore]
-fn profile_loop() {
-    let Some(lib) = library_dir() else { return };
-    let which = std::env::var("RADC_PROFILE").unwrap_or_else(|_| "sun".into());
-    let (file, expr) = match which.as_str() {
-        "cielab" => (
-            "cielab.cal",
-            "$1=Ls($2);$2=as($1,$2,$3);$3=bs($1,$2,$3);$4=Cs($1,$2,$3);$5=bfunc($1)",
-        ),
-        _ => (
-            "sun.cal",
-            "MONTH=$1;DAY=$2;TIME=$3;$1=SALT;$2=SAZI;$3=HALFDAY",
-        ),
-    };
-    let Ok(text) = std::fs::read_to_string(lib.join(file)) else {
-        return;
-    };
-    let m = module(&[&text, expr], &Env::rcalc());
-    // `RADC_PROFILE_INTERP=1`: the interpreter on the same rows, column by column as
-    // the bench runs it, for instruction counts of both.
-    if std::env::var_os("RADC_PROFILE_INTERP").is_some() {
-        let bodies: Vec<_> = m.outputs().values().map(|o| &o.body).collect();
-        let mut ev = radc_lang::cal::eval::Evaluator::new(&m);
-        let mut sum = 0.0;
-        for i in 0..200_000 {
-            let row = profile_row(&which, i);
-            ev.next_record();
-            for body in &bodies {
-                sum += ev.eval_top(body, &mut Cols(&row)).unwrap_or(0.0);
-            }
-        }
-        eprintln!("{sum}");
-        return;
-    }
-    let c = Jit::new().compile(&m, &["$*"]).expect("compiles");
-    let all = c.entry("$*").expect("entry");
-    let mut ctx = c.context();
-    let mut out = Vec::new();
-    let mut sum = 0.0;
-    for i in 0..200_000 {
-        let row = profile_row(&which, i);
-        ctx.next_record();
-        out.clear();
-        c.eval_outputs(all, &mut ctx, &mut Cols(&row), &mut out)
-            .expect("evaluates");
-        sum += out[0];
-    }
-    eprintln!("{sum}");
-}
-
-/// Record `i` of the profile loop's 64-row cycle: cielab.cal's XYZ, or sun.cal's
-/// month, day and hour.
-fn profile_row(which: &str, i: usize) -> [f64; 3] {
-    let t = (i % 64) as f64 / 64.0;
-    if which == "cielab" {
-        [0.1 + t, 0.005 + 0.9 * t, 1.2 - t]
-    } else {
-        [1.0 + (t * 12.0).floor(), 1.0 + t * 27.0, 6.0 + 12.0 * t]
-    }
 }

@@ -40,7 +40,8 @@ impl Default for Session {
         let config = Config::default();
         let overlay = Overlay::default();
         Session {
-            db: Database::new(Arc::new(DiskAuxFiles::new(&config, overlay.clone()))),
+            db: Database::new(Arc::new(DiskAuxFiles::new(&config, overlay.clone())))
+                .with_render_support(Arc::new(radc_renderer::RendererSupport)),
             open: HashMap::new(),
             disk: HashMap::new(),
             scenes: HashMap::new(),

@@ -21,4 +21,4 @@ pub mod surfaces;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};
-pub use scene::{Scene, Unsupported};
+pub use scene::{RendererSupport, Scene, Unsupported};

@@ -107,18 +107,43 @@ pub struct Scene {
 pub const MAX_LAMPS: usize = 8;
 
 /// Something in the scene radc cannot render yet (or that Radiance refuses at render
-/// time), by primitive name and type.
+/// time), by primitive name and type, with the modifier chain that reaches it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Unsupported {
     pub prim: PrimId,
     pub name: String,
     pub type_name: &'static str,
     pub why: &'static str,
+    /// What uses the refused primitive (what it modifies, the alias or material naming
+    /// it), nearest first, each as `type 'name'`, down to the surface (when the surface was kept): a pattern deep in a chain is
+    /// only found by its users.
+    pub chain: Vec<String>,
 }
 
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} '{}': {}", self.type_name, self.name, self.why)
+        write!(f, "{} '{}': {}", self.type_name, self.name, self.why)?;
+        for (i, user) in self.chain.iter().enumerate() {
+            let joint = if i == 0 { " (" } else { ", " };
+            write!(f, "{joint}used by {user}")?;
+        }
+        if !self.chain.is_empty() {
+            write!(f, ")")?;
+        }
+        Ok(())
+    }
+}
+
+/// The renderer's judgement for `radc check` and the language server
+/// ([`radc_lang::scene::RenderSupport`]): exactly what [`Scene::compile`] refuses.
+pub struct RendererSupport;
+
+impl radc_lang::scene::RenderSupport for RendererSupport {
+    fn refusals(&self, scene: &ir::Scene) -> Vec<(PrimId, String)> {
+        Scene::refusals(scene)
+            .into_iter()
+            .map(|u| (u.prim, u.to_string()))
+            .collect()
     }
 }
 
@@ -128,24 +153,61 @@ struct Compiler<'a> {
     /// Material index per primitive, once compiled.
     material_of_prim: Vec<Option<Option<MaterialId>>>,
     problems: Vec<Unsupported>,
+    /// The primitives being compiled, from the surface down to the innermost
+    /// modifier: the chain a refusal shows.
+    path: Vec<PrimId>,
+}
+
+/// Why radc refuses a modifier of this category where it sits: the renderer does not
+/// run function files yet, and a material shaded without its pattern, texture or
+/// mixture would be silently wrong.
+fn not_modelled(category: Category) -> &'static str {
+    match category {
+        Category::Pattern => "patterns are not rendered yet",
+        Category::Texture => "textures are not rendered yet",
+        Category::Mixture => "mixtures are not rendered yet",
+        Category::Surface => "a surface cannot be a modifier",
+        Category::Material | Category::Light | Category::Alias => {
+            "this material type is not rendered yet"
+        }
+    }
+}
+
+impl<'a> Compiler<'a> {
+    fn new(ir: &'a ir::Scene) -> Self {
+        Compiler {
+            ir,
+            scene: Scene::default(),
+            material_of_prim: vec![None; ir.prims.len()],
+            problems: Vec::new(),
+            path: Vec::new(),
+        }
+    }
+
+    /// Compiles every reachable surface, then what surfaces that were checked but not
+    /// kept refer to (`ir::Scene::roots`), so a scene lowered for checking is judged as
+    /// the full scene would be.
+    fn compile_reachable(&mut self) {
+        let ir = self.ir;
+        let reachable = ir.reachable();
+        for (i, p) in ir.prims.iter().enumerate() {
+            if reachable.get(i) == Some(&true) && p.category() == Category::Surface {
+                self.surface(PrimId(i as u32), p);
+            }
+        }
+        for &root in &ir.roots {
+            self.path.clear();
+            self.material_of(ModRef::Prim(root));
+        }
+    }
 }
 
 impl Scene {
     /// Compiles the surfaces of `ir` that a render needs. Everything radc does not model
     /// yet is listed, never silently dropped.
     pub fn compile(ir: &ir::Scene) -> Result<Scene, Vec<Unsupported>> {
-        let mut c = Compiler {
-            ir,
-            scene: Scene::default(),
-            material_of_prim: vec![None; ir.prims.len()],
-            problems: Vec::new(),
-        };
-        let reachable = ir.reachable();
-        for (i, p) in ir.prims.iter().enumerate() {
-            if reachable.get(i) == Some(&true) && p.category() == Category::Surface {
-                c.surface(PrimId(i as u32), p);
-            }
-        }
+        let mut c = Compiler::new(ir);
+        c.compile_reachable();
         if !c.problems.is_empty() {
             return Err(c.problems);
         }
@@ -164,6 +226,14 @@ impl Scene {
         scene.bvh = Bvh::build(&bounds);
         scene.pack_surfaces();
         Ok(scene)
+    }
+
+    /// What [`Scene::compile`] would refuse in `ir`, without building anything else:
+    /// `radc check` warns of exactly these, so check and render never disagree.
+    pub fn refusals(ir: &ir::Scene) -> Vec<Unsupported> {
+        let mut c = Compiler::new(ir);
+        c.compile_reachable();
+        c.problems
     }
 
     /// Lays out the surfaces in BVH order for traversal (after the BVH was built or
@@ -260,17 +330,32 @@ impl Scene {
 
 impl Compiler<'_> {
     fn unsupported(&mut self, id: PrimId, why: &'static str) {
-        if let Some(p) = self.ir.get(id) {
-            self.problems.push(Unsupported {
-                prim: id,
-                name: p.name.clone(),
-                type_name: p.schema.name,
-                why,
-            });
-        }
+        let Some(p) = self.ir.get(id) else { return };
+        let chain = self
+            .path
+            .iter()
+            .rev()
+            .filter(|&&user| user != id)
+            .filter_map(|&user| self.ir.get(user))
+            .map(|u| format!("{} '{}'", u.schema.name, u.name))
+            .collect();
+        self.problems.push(Unsupported {
+            prim: id,
+            name: p.name.clone(),
+            type_name: p.schema.name,
+            why,
+            chain,
+        });
     }
 
     fn surface(&mut self, id: PrimId, p: &ir::Prim) {
+        self.path.clear();
+        self.path.push(id);
+        self.surface_shape(id, p);
+        self.path.clear();
+    }
+
+    fn surface_shape(&mut self, id: PrimId, p: &ir::Prim) {
         let shape = match &p.kind {
             PrimKind::Sphere { center, radius } | PrimKind::Bubble { center, radius } => {
                 Some(Shape::Sphere(Sphere {
@@ -369,8 +454,8 @@ impl Compiler<'_> {
                 let name = p.name.clone();
                 (self.compile_material(id), name)
             }
-            Category::Pattern | Category::Texture | Category::Mixture => {
-                self.unsupported(id, "patterns, textures and mixtures are not rendered yet");
+            category @ (Category::Pattern | Category::Texture | Category::Mixture) => {
+                self.unsupported(id, not_modelled(category));
                 (None, String::new())
             }
             Category::Surface => (None, "void".into()),
@@ -385,7 +470,47 @@ impl Compiler<'_> {
         if let Some(slot) = self.material_of_prim.get_mut(id.0 as usize) {
             *slot = Some(None);
         }
+        let depth = self.path.len();
+        self.path.push(id);
+        let compiled = self.compile_material_kind(id);
+        self.path.truncate(depth);
+        compiled
+    }
+
+    /// Refuses the first modifier applied to material `id` (an alias's own, or the
+    /// target's through `inherit`), as Radiance's `raytexture` would apply it before
+    /// shading: patterns, textures and mixtures are not modelled yet. Returns whether
+    /// the material has none.
+    fn refuse_modifiers(&mut self, id: PrimId) -> bool {
+        let Some(modifier) = self.effective_modifier(id) else {
+            return true;
+        };
+        let Some(m) = self.ir.get(modifier) else {
+            return true;
+        };
+        self.unsupported(modifier, not_modelled(m.category()));
+        false
+    }
+
+    /// The modifier a material is shaded with: an alias's own (`mod alias new old`
+    /// gives `old`'s arguments a new modifier), or, through `inherit`, its target's.
+    fn effective_modifier(&self, mut id: PrimId) -> Option<PrimId> {
+        for _ in 0..self.ir.prims.len() + 1 {
+            let p = self.ir.get(id)?;
+            match (p.modifier, &p.kind) {
+                (ModRef::Inherit, PrimKind::Alias { target }) => id = *target,
+                (ModRef::Prim(m), _) => return Some(m),
+                _ => return None,
+            }
+        }
+        None
+    }
+
+    fn compile_material_kind(&mut self, id: PrimId) -> Option<MaterialId> {
         let kind = self.alias_target(id)?;
+        if !self.refuse_modifiers(id) {
+            return None;
+        }
         let p = self.ir.get(kind)?;
         let rgb = |c: &[f64; 3]| vec3(*c);
         let material = match &p.kind {
@@ -545,7 +670,7 @@ impl Compiler<'_> {
                 })
             }
             _ => {
-                self.unsupported(kind, "this material type is not rendered yet");
+                self.unsupported(kind, not_modelled(p.category()));
                 return None;
             }
         };

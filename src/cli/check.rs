@@ -89,13 +89,16 @@ pub fn run(args: &[String]) -> ExitCode {
                 if is_cal(&f) {
                     check_cal(&f, &mut sources, &mut diags);
                 } else {
-                    check_scene(
+                    let start = diags.len();
+                    let scene = check_scene(
                         &[f],
                         opts.allow_commands,
                         Keep::Modifiers,
                         &mut sources,
                         &mut diags,
                     );
+                    let refusals = render_refusals(&scene, &diags[start..]);
+                    diags.extend(refusals);
                 }
             }
         } else if is_cal(path) {
@@ -113,13 +116,16 @@ pub fn run(args: &[String]) -> ExitCode {
         }
     }
     if !scene_files.is_empty() {
-        check_scene(
+        let start = diags.len();
+        let scene = check_scene(
             &scene_files,
             opts.allow_commands,
             Keep::Modifiers,
             &mut sources,
             &mut diags,
         );
+        let refusals = render_refusals(&scene, &diags[start..]);
+        diags.extend(refusals);
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
@@ -145,6 +151,12 @@ pub fn run(args: &[String]) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// W0307 for what `radc trace`/`radc render` would refuse, by the renderer's own
+/// judgement.
+fn render_refusals(scene: &scene::ir::Scene, diags: &[Diagnostic]) -> Vec<Diagnostic> {
+    scene::support::refusal_diagnostics(scene, diags, &radc_renderer::RendererSupport)
 }
 
 fn collect_scenes(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -37,7 +37,12 @@ library:
    run printed none (calcomp errors), its first three lines joined by " / "; otherwise "".
    `warnings`: the distinct warning lines, in order, at most 8. Absolute paths of the scene
    folder and the oracle library are replaced by `.` and `$RAYPATH_LIB`.
-4. Shared-corpus scenes also get `needs_commands`: true when the file runs `!` commands or
+4. `library_files`: the files of the oracle's library (`$RAYPATH_LIB`) the scene names, sorted:
+   every word of the scene or of its `xform` expansion that is no file in the scene's folder
+   but is one in the library. On a machine without the oracle radc cannot find them (and
+   rightly reports them missing), so the Rust test compares those scenes only where the
+   oracle is installed, and every other scene everywhere.
+5. Shared-corpus scenes also get `needs_commands`: true when the file runs `!` commands or
    Radiance could not find a file it names (meshes, octrees, BSDF XML not copied there), so
    the Rust test can skip them until radc expands commands.
 
@@ -318,6 +323,29 @@ def runs_commands(scene: Path) -> bool:
     )
 
 
+def library_files(scene: Path) -> list[str]:
+    """The library files a scene names (item 4 of the module docstring)."""
+    lib = Path(os.environ.get("ORACLE_DIR", "")) / "lib"
+    if not os.environ.get("ORACLE_DIR") or not lib.is_dir():
+        sys.exit("ORACLE_DIR is unset: source tests/oracle/env.sh first")
+    cwd = scene.parent
+    status, _, out = run(["xform", scene.name], cwd, b"", OCONV_TIMEOUT)
+    text = scene.read_bytes().decode("utf-8", errors="replace")
+    named = set(words(text))
+    if status == 0:
+        named |= set(words(out.decode("utf-8", errors="replace")))
+    found = set()
+    for word in named:
+        if not word or word.startswith("/") or "\0" in word:
+            continue
+        try:
+            if (lib / word).is_file() and not (cwd / word).exists():
+                found.add(word)
+        except (OSError, ValueError):
+            continue
+    return sorted(found)
+
+
 def verdict(scene: Path, shared: bool) -> dict:
     """What oconv and a probe rtrace say about one scene."""
     cwd, name = scene.parent, scene.name
@@ -352,6 +380,7 @@ def verdict(scene: Path, shared: bool) -> dict:
         "render_ok": render_ok,
         "radiance_says": errors[0] if errors else "",
         "warnings": warnings,
+        "library_files": library_files(scene),
     }
     if shared:
         missing = any(MISSING_FILE.search(m) for m in errors)

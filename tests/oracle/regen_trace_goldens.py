@@ -259,6 +259,11 @@ def cases():
     case("glass-limited", "glass.rad", ["-ld"], limited(glass_view, rng), "-ovL")
     case("distant-limited", "distant.rad", ["-ld"], limited(box_rays(rng, 40, [-5, -5, .5], [5, 5, 4]), rng), "-ovL")
     case("polygon_lamp-lengths", "polygon_lamp.rad", [], room[:40], "-olLo")
+    alias_view = box_rays(rng, 50, [-3, -2, .5], [3, 2, 3], toward=[0, 0, .5], spread=2)
+    alias_view += box_rays(rng, 20, [-2, 0, 1], [2, 2, 2], toward=[0, 3, 2], spread=1)
+    case("aliases-view", "aliases.rad", ["-av", ".05", ".05", ".05"], alias_view, "-ovL")
+    case("aliases-irradiance", "aliases.rad", ["-I"],
+         irradiance_points(rng, 30, [-4, -4, 0], [4, 2.5, 0], [(0, 0, 1)]))
     return out
 
 

@@ -1,20 +1,10 @@
 //! Radiance's `.cal` library as JIT programs, shared by the compile-size test and the
-//! "library compile" bench group so that both measure the same programs.
+//! "library compile" bench group so that both measure the same programs. Where the library
+//! is (the oracle's) is `radc_oracle::library`'s business.
 
 use radc_lang::FileId;
 use radc_lang::cal::{Env, Module};
 use std::path::{Path, PathBuf};
-
-/// Radiance's `.cal` library in the oracle venv (`bash tests/oracle/install.sh`),
-/// if it is installed.
-pub fn library_dir() -> Option<PathBuf> {
-    let lib = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.oracle/lib");
-    std::fs::read_dir(&lib)
-        .ok()?
-        .filter_map(Result::ok)
-        .map(|e| e.path().join("site-packages/pyradiance/lib"))
-        .find(|p| p.is_dir())
-}
 
 /// One program per library file: `rayinit.cal` then the file, with every name the
 /// file defines as an entry point. Each is (file name, program, entry names); files

@@ -257,6 +257,12 @@ impl AuxFiles for AssumeAuxFilesExist {
 pub trait Db: salsa::Database {
     fn aux_files(&self) -> &dyn AuxFiles;
 
+    /// The renderer's judgement of what it would refuse (W0307), when the front end
+    /// has one to give; `lang` cannot know it.
+    fn render_support(&self) -> Option<&dyn crate::scene::RenderSupport> {
+        None
+    }
+
     /// Called each time a file is parsed (a query really ran, not a memo reused):
     /// how the server's statistics show that an edit re-parses only the edited file.
     fn note_parse(&self, _file: SourceFile) {}
@@ -277,6 +283,7 @@ pub struct Database {
     log: Arc<Mutex<Option<Vec<String>>>>,
     /// How many times each file (by path) was parsed.
     parses: Arc<Mutex<HashMap<String, ParseCount>>>,
+    render_support: Option<Arc<dyn crate::scene::RenderSupport>>,
 }
 
 #[salsa::db]
@@ -286,6 +293,10 @@ impl salsa::Database for Database {}
 impl Db for Database {
     fn aux_files(&self) -> &dyn AuxFiles {
         &*self.aux_files
+    }
+
+    fn render_support(&self) -> Option<&dyn crate::scene::RenderSupport> {
+        self.render_support.as_deref()
     }
 
     fn note_parse(&self, file: SourceFile) {
@@ -324,9 +335,16 @@ impl Database {
             next_id: Arc::default(),
             log,
             parses: Arc::default(),
+            render_support: None,
         };
         FileSystem::new(&db, 0);
         db
+    }
+
+    /// Checks report what this renderer would refuse (W0307), as `radc check` does.
+    pub fn with_render_support(mut self, support: Arc<dyn crate::scene::RenderSupport>) -> Self {
+        self.render_support = Some(support);
+        self
     }
 
     /// Adds a file with a fresh [`FileId`].

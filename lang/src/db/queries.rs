@@ -68,12 +68,16 @@ fn check_files(db: &dyn Db, files: &[SourceFile]) -> Vec<Diagnostic> {
             lowering.item(item, warn_unused);
         }
     }
-    let (_scene, more) = lowering.finish();
+    let (scene, more) = lowering.finish();
     let mut all: Vec<Diagnostic> = parsed
         .iter()
         .flat_map(|p| p.diagnostics.iter().cloned())
         .collect();
     all.extend(more);
+    if let Some(support) = db.render_support() {
+        let refusals = scene::support::refusal_diagnostics(&scene, &all, support);
+        all.extend(refusals);
+    }
     all.sort_by_key(|d| (d.span.file, d.span.start));
     all
 }

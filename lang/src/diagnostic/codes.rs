@@ -58,6 +58,7 @@ codes! {
     W0301 = "W0301" "unused-modifier" Warning: "A modifier is defined but nothing uses it.";
     W0302 = "W0302" "redefined-modifier" Warning: "A modifier is defined again before its earlier definition was ever used.";
     W0303 = "W0303" "command-not-expanded" Warning: "A '!' command line was not expanded, so what it makes was not checked.";
+    W0307 = "W0307" "not-rendered" Warning: "The scene uses something radc's renderer does not model yet: radc trace and radc render refuse the scene (Radiance renders it).";
     // --- calcomp ---------------------------------------------------------------------
     E0501 = "E0501" "cal-syntax" Error: "The calcomp text does not follow the grammar Radiance's parser accepts.";
     E0502 = "E0502" "cal-bad-parameter" Error: "A function parameter name is not allowed (it holds a context mark).";

@@ -176,6 +176,10 @@ pub enum PrimKind {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
     pub prims: Vec<Prim>,
+    /// What surfaces that were checked but not kept (`lower::Keep::Modifiers`) refer
+    /// to: with the kept surfaces, the roots of reachability. Empty when every surface
+    /// was kept.
+    pub roots: Vec<PrimId>,
 }
 
 impl Scene {
@@ -187,7 +191,7 @@ impl Scene {
     /// through modifiers, aliases and modifier-naming string arguments. Unused
     /// modifiers cost nothing downstream.
     pub fn reachable(&self) -> Vec<bool> {
-        self.reachable_from(&[])
+        self.reachable_from(&self.roots)
     }
 
     /// [`Scene::reachable`], with `roots` reached too: what surfaces that were

@@ -178,6 +178,7 @@ impl<'a> Lowering<'a> {
         self.report_conflicting_materials();
         self.settle_deferred();
         self.report_unused();
+        self.scene.roots = std::mem::take(&mut self.roots);
         (self.scene, self.diags)
     }
 }
@@ -356,10 +357,11 @@ impl Lowering<'_> {
             return;
         }
         // A `source` is kept: whether its errors count depends on its material,
-        // judged at the end.
+        // judged at the end. Instances and meshes are kept so that what the renderer
+        // would refuse of them is known (they are few, and hold only file names).
         let kept = self.keep == Keep::Everything
             || schema.category != Category::Surface
-            || schema.name == "source";
+            || matches!(schema.name, "source" | "instance" | "mesh");
         self.current_kept = kept;
         let modifier = self.resolve_modifier(&p.modifier, schema);
         let id = PrimId(self.scene.prims.len() as u32);

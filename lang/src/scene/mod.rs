@@ -10,12 +10,14 @@ pub mod parser;
 mod reader;
 pub mod reparse;
 pub mod scope;
+pub mod support;
 pub mod syntax;
 
 pub use command::{CommandExpander, Expansion, NoCommands};
 pub use lower::{AssumeFilesExist, FileLookup, Keep, LowerInput, Lowering, lower, lower_with};
 pub use parser::{parse, parse_each};
 pub use reparse::ParsedScene;
+pub use support::RenderSupport;
 
 use crate::diagnostic::Diagnostic;
 use crate::source::FileId;
