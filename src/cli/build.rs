@@ -145,6 +145,11 @@ pub(super) fn picture_description(path: &Path) -> Option<String> {
 }
 
 fn describe_picture(head: &[u8]) -> Option<String> {
+    // Radiance's pictures start with the magic line; a scene that opens with comments
+    // and an empty line must not be taken for a header.
+    if !head.starts_with(b"#?") {
+        return None;
+    }
     let (header, end) = radc_picture::Header::parse(head).ok()?;
     let format = header.format();
     if format

@@ -88,12 +88,14 @@ def make_inputs():
     radc = radc_binary()
     with tempfile.TemporaryDirectory() as tmp:
         octree = os.path.join(tmp, "scene.oct")
+        # Relative names, so the headers the goldens keep name no local folder; a frozen
+        # octree (-f), so rpict needs no scene file beside it.
         with open(octree, "wb") as f:
-            subprocess.run(["oconv", os.path.join(SCENES, "sphere_lamp.rad")], stdout=f, check=True)
+            subprocess.run(["oconv", "-f", "sphere_lamp.rad"], stdout=f, check=True, cwd=SCENES)
         for name, size in [("small", "-x 12 -y 9"), ("wide", "-x 24 -y 16"), ("tall", "-x 18 -y 22")]:
             run(["rpict"] + DETERMINISTIC + VIEW.split() + size.split() + [octree], f"{name}.hdr")
     run([radc, "render"] + VIEW.split() + ["-x", "20", "-y", "18", "-o", "radc.hdr",
-         os.path.join(SCENES, "sphere_lamp.rad")])
+         os.path.relpath(os.path.join(SCENES, "sphere_lamp.rad"), INPUTS)])
     run(["protate", "wide.hdr"], "turned.hdr")
     run(["protate", "-r", "tall.hdr"], "turned-ccw.hdr")
     run(["pflip", "-h", "wide.hdr"], "flipped.hdr")
