@@ -114,11 +114,13 @@ fn render_from_a_compiled_scene_is_the_same_picture() {
         args.push(s(scene));
         let o = radc(&args, b"");
         assert!(o.status.success(), "{}", stderr(&o));
-        // The pixels: everything after the resolution line (the header names the command).
+        // The pixels: everything from the resolution line on (the header names the
+        // command); the line as rpict writes it, numbers in `%8d`.
+        let line = b"-Y       24 +X       24\n";
         let at = o
             .stdout
-            .windows(7)
-            .position(|w| w == b"-Y 24 +")
+            .windows(line.len())
+            .position(|w| w == line)
             .expect("resolution line");
         o.stdout[at..].to_vec()
     };

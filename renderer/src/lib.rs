@@ -19,7 +19,6 @@ pub mod shapes;
 pub mod small_sources;
 pub mod solid_angle;
 pub mod surfaces;
-pub mod tonemap;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};
