@@ -157,7 +157,7 @@ fn trunc_i32(x: f64) -> i32 {
 
 /// `cvttsd2si` into 64 bits, C's `(long)x`: `i64::MIN` for NaN and out of range.
 fn trunc_i64(x: f64) -> i64 {
-    if x >= -9_223_372_036_854_775_808.0 && x < 9_223_372_036_854_775_808.0 {
+    if (-9_223_372_036_854_775_808.0..9_223_372_036_854_775_808.0).contains(&x) {
         x as i64
     } else {
         i64::MIN
@@ -309,50 +309,51 @@ pub fn fnoise3(x: f64, y: f64, z: f64) -> f64 {
     }
 }
 
-/// Hart & Cheney's #5667 for `erfc` (src/common/erf.c), numerators and denominators
-/// from the constant term up; all of erf.c's `erfc` range uses it (the small-argument
-/// branch is commented out there).
+/// Hart & Cheney's #5667 for `erfc`, as src/common/erf.c uses it, numerator and
+/// denominator from the constant term up; all of erf.c's `erfc` range uses it (its
+/// small-argument branch is commented out). Written as the shortest decimals of the
+/// doubles the reference build holds (erf.c's longer digits round to these).
 const ERFC_P: [f64; 8] = [
-    1826.3348842295112592168999,
-    2898.0293292167655611275846,
-    2320.439590251635247384768711,
-    1143.262070703886173606073338,
-    368.5196154710010637133875746,
-    77.08161730368428609781633646,
-    9.675807882987265400604202961,
-    0.5641877825507397413087057563,
+    1826.3348842295113,
+    2898.0293292167657,
+    2320.4395902516353,
+    1143.2620707038861,
+    368.5196154710011,
+    77.08161730368428,
+    9.675807882987266,
+    0.5641877825507398,
 ];
 const ERFC_Q: [f64; 9] = [
-    1826.3348842295112595576438,
-    4958.82756472114071495438422,
-    6089.5424232724435504633068,
-    4429.612803883682726711528526,
-    2094.384367789539593790281779,
-    661.7361207107653469211984771,
-    137.1255960500622202878443578,
-    17.14980943627607849376131193,
+    1826.3348842295113,
+    4958.82756472114,
+    6089.542423272444,
+    4429.612803883682,
+    2094.3843677895397,
+    661.7361207107654,
+    137.12559605006223,
+    17.14980943627608,
     1.0,
 ];
-/// erf.c's series for `erf` below 0.5, in powers of x².
+/// erf.c's rational series for `erf` below 0.5, in powers of x².
 const ERF_P: [f64; 7] = [
-    80437.3630960840172832162,
-    7404.07142710151470082064,
-    3017.82788536507577809226,
-    38.0140318123903008244444,
-    14.3383842191748205576712,
-    -0.288805137207594084924010,
-    0.007547728033418631287834,
+    80437.36309608402,
+    7404.071427101515,
+    3017.827885365076,
+    38.0140318123903,
+    14.33838421917482,
+    -0.2888051372075941,
+    0.007547728033418632,
 ];
 const ERF_Q: [f64; 6] = [
-    80437.3630960840172826266,
-    34216.5257924628539769006,
-    6379.60017324428279487120,
-    658.070155459240506326937,
-    38.0190713951939403753468,
+    80437.36309608402,
+    34216.52579246285,
+    6379.600173244283,
+    658.0701554592405,
+    38.01907139519394,
     1.0,
 ];
-/// 2/√π.
-const TWO_OVER_SQRT_PI: f64 = 1.1283791670955125738961589031;
+/// 2/√π, erf.c's `torp` (the same double as the reference build's; a test checks).
+const TWO_OVER_SQRT_PI: f64 = std::f64::consts::FRAC_2_SQRT_PI;
 
 fn horner(coefficients: &[f64], x: f64) -> f64 {
     coefficients.iter().rev().fold(0.0, |acc, c| acc * x + c)
@@ -384,4 +385,151 @@ pub fn erfc(x: f64) -> f64 {
         return 0.0;
     }
     (-(x * x)).exp() * horner(&ERFC_P, x) / horner(&ERFC_Q, x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn perlin_noise_vanishes_on_the_integer_lattice() {
+        for p in [
+            [0.0, 0.0, 0.0],
+            [1.0, 2.0, 3.0],
+            [-1.0, -7.0, 255.0],
+            [256.0, -257.0, 4.0],
+        ] {
+            assert_eq!(noise3(p[0], p[1], p[2]), 0.0, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn cells_floor_within_int_range_and_wrap_beyond_it() {
+        assert_eq!(cell(2.25), (2, 0.25));
+        assert_eq!(cell(-0.25), (-1, 0.75));
+        // An integer negative coordinate: (int)x - 1, offset 1 (noise3.c's `x < 0`).
+        assert_eq!(cell(-1.0), (-2, 1.0));
+        assert_eq!(cell(2_147_483_647.5), (i32::MAX, 0.5));
+        // Out of range, cvttsd2si gives INT_MIN; `- (x < 0)` then wraps to INT_MAX.
+        assert_eq!(cell(2_147_483_648.0), (i32::MIN, 4_294_967_296.0));
+        assert_eq!(cell(-2_147_483_649.0), (i32::MAX, -4_294_967_296.0));
+        assert_eq!(cell(f64::NAN).0, i32::MIN);
+    }
+
+    #[test]
+    fn partials_are_backward_differences_scaled_by_2000() {
+        let (x, y, z) = (0.3, -1.7, 2.9);
+        let f = noise3(x, y, z);
+        assert_eq!(noise3x(x, y, z), (f - noise3(x - EPSILON, y, z)) * 2000.0);
+        assert_eq!(noise3y(x, y, z), (f - noise3(x, y - EPSILON, z)) * 2000.0);
+        assert_eq!(noise3z(x, y, z), (f - noise3(x, y, z - EPSILON)) * 2000.0);
+    }
+
+    #[test]
+    fn the_cache_gives_the_pure_values_for_finite_points() {
+        let mut cache = Noise3Cache::default();
+        for p in [
+            [0.1, 0.2, 0.3],
+            [0.1, 0.2, 0.3],
+            [5.5, -2.25, 1e4],
+            [0.1, 0.2, 0.3],
+        ] {
+            assert_eq!(cache.partial(p, 1), noise3y(p[0], p[1], p[2]));
+            assert_eq!(cache.noise3(p), noise3(p[0], p[1], p[2]));
+            assert_eq!(cache.partial(p, 0), noise3x(p[0], p[1], p[2]));
+            assert_eq!(cache.partial(p, 2), noise3z(p[0], p[1], p[2]));
+        }
+    }
+
+    #[test]
+    fn the_cache_answers_a_nan_point_with_the_previous_point() {
+        let mut cache = Noise3Cache::default();
+        let before = cache.noise3([0.1, 0.2, 0.3]);
+        assert_eq!(cache.noise3([f64::NAN, 0.2, 0.3]), before);
+        assert_eq!(
+            cache.partial([0.1, f64::NAN, 0.3], 0),
+            noise3x(0.1, 0.2, 0.3)
+        );
+        assert!(noise3(f64::NAN, 0.2, 0.3).is_nan());
+        // A cold cache computes the NaN point itself.
+        assert!(Noise3Cache::default().noise3([f64::NAN, 0.0, 0.0]).is_nan());
+    }
+
+    #[test]
+    fn frand_stays_in_its_range_with_wrapping_seeds() {
+        for seed in [
+            0,
+            1,
+            -1,
+            17 * 2000,
+            i64::MAX,
+            i64::MIN,
+            0x1234_5678_9abc_def0,
+        ] {
+            let r = frand(seed);
+            assert!((-1.0..=1.0).contains(&r), "{seed}: {r}");
+        }
+    }
+
+    #[test]
+    fn fractal_noise_is_finite_even_where_coordinates_saturate() {
+        for p in [
+            [0.0, 0.0, 0.0],
+            [-3.7, 2.2, 9.9],
+            [1e16, -1e17, 5.0],
+            [f64::MAX, -f64::MAX, 1e300],
+        ] {
+            let f = fnoise3(p[0], p[1], p[2]);
+            assert!(f.is_finite() && f.abs() < 2.0, "{p:?}: {f}");
+        }
+        assert_eq!(trunc_i64(1e19), i64::MIN);
+        assert_eq!(trunc_i64(-9_223_372_036_854_775_808.0), i64::MIN);
+        assert_eq!(trunc_i64(-2.5), -2);
+    }
+
+    #[test]
+    fn erf_and_erfc_keep_erf_c_symmetries_and_limits() {
+        for x in [0.0, 0.1, 0.4999, 0.5, 1.0, 3.0, 9.99] {
+            assert_eq!(erf(-x), -erf(x), "{x}");
+            assert!((erf(x) + erfc(x) - 1.0).abs() < 1e-15, "{x}");
+            assert_eq!(erfc(-x), 2.0 - erfc(x), "{x}");
+        }
+        assert_eq!(
+            (erf(10.0), erf(-10.0), erf(f64::INFINITY)),
+            (1.0, -1.0, 1.0)
+        );
+        assert_eq!(
+            (erfc(10.0), erfc(-10.0), erfc(f64::NEG_INFINITY)),
+            (0.0, 2.0, 2.0)
+        );
+        assert!(erf(f64::NAN).is_nan() && erfc(f64::NAN).is_nan());
+        assert!((erf(1.0) - 0.842_700_792_949_714_9).abs() < 1e-15);
+        // erf.c's `torp` as the reference build's binary holds it.
+        assert_eq!(TWO_OVER_SQRT_PI.to_bits(), 0x3FF2_0DD7_5042_9B6D);
+    }
+
+    #[test]
+    fn call_knows_only_the_pure_functions_at_their_arity() {
+        assert_eq!(call("erf", &[0.5]), Some(erf(0.5)));
+        assert_eq!(
+            call("noise3z", &[1.5, 2.0, -3.0]),
+            Some(noise3z(1.5, 2.0, -3.0))
+        );
+        assert_eq!(
+            call("fnoise3", &[1.5, 2.0, -3.0]),
+            Some(fnoise3(1.5, 2.0, -3.0))
+        );
+        for name in [
+            "arg",
+            "source_corr",
+            "source_theta",
+            "source_phi",
+            "fprism_val",
+            "sin",
+        ] {
+            assert_eq!(call(name, &[1.0, 2.0, 3.0]), None, "{name}");
+        }
+        assert_eq!(call("noise3", &[1.0, 2.0]), None);
+        assert_eq!(call("erfc", &[]), None);
+    }
 }
