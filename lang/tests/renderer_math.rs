@@ -2,9 +2,9 @@
 //! rtrace's values of `noise3 noise3x noise3y noise3z fnoise3 erf erfc` in full double
 //! precision (tests/oracle/regen_renderer_math.py splits each into three channels that
 //! survive rtrace's single-precision colour exactly), and radc must give the same
-//! doubles: 0 ulps.
+//! doubles: 0 ulps. The `*-cache` goldens replay noise3.c's one-point cache.
 
-use radc_lang::cal::renderer_math;
+use radc_lang::cal::renderer_math::{self, Noise3Cache};
 use std::path::PathBuf;
 
 const FUNCTIONS: [&str; 7] = [
@@ -33,34 +33,87 @@ fn ulps(a: f64, b: f64) -> u64 {
     key(a).abs_diff(key(b))
 }
 
+/// A golden's lines as (arguments, rtrace's value).
+fn cases(name: &str) -> Vec<(Vec<f64>, f64)> {
+    let text = golden(name);
+    let lines = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.is_empty());
+    lines
+        .map(|line| {
+            let (args, value) = line.split_once(" = ").expect("golden line `args = value`");
+            let args = args
+                .split(' ')
+                .map(|a| a.parse().expect("argument"))
+                .collect();
+            (args, value.parse().expect("value"))
+        })
+        .collect()
+}
+
+/// Compares `eval` with one golden; returns the worst difference in ulps and notes
+/// each differing point in `failures`.
+fn compare(name: &str, mut eval: impl FnMut(&[f64]) -> f64, failures: &mut Vec<String>) -> u64 {
+    let cases = cases(name);
+    let mut worst = 0;
+    for (args, expected) in &cases {
+        let got = eval(args);
+        let d = ulps(got, *expected);
+        worst = worst.max(d);
+        if d != 0 && failures.len() < 20 {
+            failures.push(format!(
+                "{name}{args:?}: radc {got:e}, rtrace {expected:e} ({d} ulps)"
+            ));
+        }
+    }
+    eprintln!(
+        "{name}: {} points, max difference {worst} ulps",
+        cases.len()
+    );
+    worst
+}
+
 #[test]
 fn every_function_matches_rtrace_to_the_last_bit() {
     let mut failures = Vec::new();
     for name in FUNCTIONS {
-        let text = golden(name);
-        let (mut points, mut worst) = (0, 0u64);
-        for line in text
-            .lines()
-            .filter(|l| !l.starts_with('#') && !l.is_empty())
-        {
-            let (args, expected) = line.split_once(" = ").expect("golden line `args = value`");
-            let args: Vec<f64> = args
-                .split(' ')
-                .map(|a| a.parse().expect("argument"))
-                .collect();
-            let expected: f64 = expected.parse().expect("value");
-            let got = renderer_math::call(name, &args).expect("a renderer function");
-            let d = ulps(got, expected);
-            worst = worst.max(d);
-            points += 1;
-            if d != 0 && failures.len() < 20 {
-                failures.push(format!(
-                    "{name}{args:?}: radc {got:e}, rtrace {expected:e} ({d} ulps)"
-                ));
-            }
-        }
-        assert!(points > 500, "{name}: only {points} golden points");
-        eprintln!("{name}: {points} points, max difference {worst} ulps");
+        assert!(cases(name).len() > 500, "{name}: too few golden points");
+        compare(
+            name,
+            |args| renderer_math::call(name, args).expect("a renderer function"),
+            &mut failures,
+        );
+    }
+    assert!(
+        failures.is_empty(),
+        "differs from rtrace:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// noise3.c keeps one cached point per process; with NaN coordinates (which its
+/// fast-math comparisons call equal to anything) what a call returns depends on the
+/// previous call. The goldens are one rtrace process's rays in order, one call each.
+#[test]
+fn the_noise_cache_matches_rtrace_through_a_sequence_with_nans() {
+    let mut failures = Vec::new();
+    for (axis, name) in ["noise3x", "noise3y", "noise3z", "noise3"]
+        .into_iter()
+        .enumerate()
+    {
+        let mut cache = Noise3Cache::default();
+        compare(
+            &format!("{name}-cache"),
+            |a| {
+                let p = [a[0], a[1], a[2]];
+                if axis < 3 {
+                    cache.partial(p, axis)
+                } else {
+                    cache.noise3(p)
+                }
+            },
+            &mut failures,
+        );
     }
     assert!(
         failures.is_empty(),
