@@ -266,6 +266,7 @@ def cases():
          irradiance_points(rng, 30, [-4, -4, 0], [4, 2.5, 0], [(0, 0, 1)]))
     pat_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .8], spread=2.5)
     pat_view += box_rays(rng, 20, [-1, -1, 1.5], [1, 1, 2.5], toward=[0, 0, 8], spread=3)
+    pat_view += box_rays(rng, 30, [0, -2, 1], [2, 0, 2], toward=[1.5, 1.5, .8], spread=.6)
     case("patterns-view", "patterns.rad", ["-av", ".05", ".05", ".05"], pat_view, "-ovL")
     case("patterns-irradiance", "patterns.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))

@@ -248,8 +248,12 @@ impl Default for Functions {
     }
 }
 
-/// The renderer functions radc evaluates (the rest are refused at compile time).
-const AVAILABLE: &[&str] = &["arg"];
+/// The renderer functions radc evaluates (the rest are refused at compile time):
+/// `arg` here, the pure ones in `lang::cal::renderer_math`. (noise3.c also caches the
+/// last point, which only shows for NaN coordinates; that cache is not kept here.)
+const AVAILABLE: &[&str] = &[
+    "arg", "noise3", "noise3x", "noise3y", "noise3z", "fnoise3", "erf", "erfc",
+];
 
 /// Why evaluating `e` cannot work: a name it reaches that nothing defines, or a
 /// renderer function radc does not evaluate yet.
@@ -319,7 +323,8 @@ impl Input for RayInput<'_> {
                     .copied()
                     .ok_or_else(|| EvalError::NotAvailable("missing real argument".into()))
             }
-            _ => Err(EvalError::NotAvailable(name.to_string())),
+            _ => radc_lang::cal::renderer_math::call(name, args)
+                .ok_or_else(|| EvalError::NotAvailable(name.to_string())),
         }
     }
 }
