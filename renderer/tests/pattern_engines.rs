@@ -24,8 +24,8 @@ impl FileLookup for Beside {
     }
 }
 
-fn compiled(engine: Engine) -> Scene {
-    let text = std::fs::read_to_string(format!("{SCENES}/patterns.rad")).expect("scene");
+fn compiled(scene: &str, engine: Engine) -> Scene {
+    let text = std::fs::read_to_string(format!("{SCENES}/{scene}")).expect("scene");
     let (syntax, diags) = radc_lang::scene::parse(FileId(0), &text);
     assert!(diags.is_empty(), "{diags:?}");
     let input = LowerInput {
@@ -40,7 +40,16 @@ fn compiled(engine: Engine) -> Scene {
 
 #[test]
 fn jit_and_interpreter_shade_alike() {
-    let (jit, interp) = (compiled(Engine::Jit), compiled(Engine::Interpreter));
+    for scene in ["patterns.rad", "textures.rad"] {
+        same_pixels(scene);
+    }
+}
+
+fn same_pixels(scene: &str) {
+    let (jit, interp) = (
+        compiled(scene, Engine::Jit),
+        compiled(scene, Engine::Interpreter),
+    );
     assert!(jit.functions.is_some(), "the scene has patterns");
     let options = Options {
         ambient: radc_renderer::math::Color::splat(0.05),
@@ -64,5 +73,5 @@ fn jit_and_interpreter_shade_alike() {
             compared += usize::from(ca.max_element() > 0.0);
         }
     }
-    assert!(compared > 1000, "{compared} rays saw something");
+    assert!(compared > 1000, "{scene}: {compared} rays saw something");
 }

@@ -6,12 +6,14 @@ use radc_lang::transform::Transform;
 
 use super::channels::{Channels, RayView};
 use super::{Functions, ProgramId, RayInput};
-use crate::math::Color;
+use crate::math::{Color, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PatternKind {
     Bright,
     Color,
+    /// `texfunc` (t_func.c): three expressions displace the surface normal.
+    Texture,
 }
 
 /// One pattern primitive, ready to evaluate.
@@ -27,12 +29,22 @@ pub struct Pattern {
     pub args: Vec<f64>,
     /// The inverse of its transform, scale made positive (func.c's `bxp`).
     pub inverse: Transform,
+    /// Its transform (`fxp`), for a texture's displacement; `None` for none.
+    pub forward: Option<Transform>,
 }
 
 impl Pattern {
     /// Multiplies `pcol` by this pattern's value for the ray, as `p_bfunc`/`p_cfunc`
-    /// do; leaves it unchanged where the evaluation raised an error.
-    pub fn apply(&self, functions: &Functions, index: u32, ray: &RayView, pcol: &mut Color) {
+    /// do, or adds a texture's displacement to `pert` (`t_func`); leaves both
+    /// unchanged where the evaluation raised an error.
+    pub fn apply(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
+        pcol: &mut Color,
+        pert: &mut Vec3,
+    ) {
         let channels = Channels::new(ray, &self.inverse);
         let mut input = RayInput {
             channels: &channels,
@@ -55,6 +67,16 @@ impl Pattern {
                 f(pcol.y, f64::from(v[1] as f32)),
                 f(pcol.z, f64::from(v[2] as f32)),
             ),
+            PatternKind::Texture => {
+                // The displacement turns (and scales) with the texture (`multv3` by
+                // `fxp`).
+                let d = match &self.forward {
+                    Some(xf) => xf.vector(v),
+                    None => v,
+                };
+                *pert += Vec3::new(d[0], d[1], d[2]);
+                return;
+            }
         };
     }
 }
