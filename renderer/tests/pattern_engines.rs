@@ -75,3 +75,17 @@ fn same_pixels(scene: &str) {
     }
     assert!(compared > 1000, "{scene}: {compared} rays saw something");
 }
+
+/// Only what the patterns reach is compiled: patterns.cal and rayinit.cal define far
+/// more than the scene's expressions use.
+#[test]
+fn only_reachable_definitions_are_compiled() {
+    let scene = compiled("patterns.rad", Engine::Jit);
+    let f = scene.functions.as_deref().expect("functions");
+    let (compiled, loaded) = (f.compiled_definitions(), f.loaded_definitions());
+    assert!(compiled > 0, "something is compiled");
+    assert!(
+        compiled * 4 < loaded,
+        "{compiled} of {loaded} definitions compiled"
+    );
+}
