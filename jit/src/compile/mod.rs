@@ -329,6 +329,11 @@ impl Context {
         std::mem::take(&mut self.raw.warnings)
     }
 
+    /// Whether any warning was raised since the last [`Context::take_warnings`].
+    pub fn has_warnings(&self) -> bool {
+        !self.raw.warnings.is_empty()
+    }
+
     /// Native stack the generated code may use below the caller before failing with
     /// "recursion too deep" (calcomp recursion is unbounded; a thread's stack is not).
     pub fn set_stack_budget(&mut self, bytes: usize) {

@@ -15,11 +15,11 @@ pub use channels::{Channels, RayView};
 pub use pattern::{Pattern, PatternKind};
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use radc_jit::compile::Entry;
 use radc_jit::{Compiled, Context, Jit};
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{EvalError, Evaluator, Input, MathErrors, Warning};
@@ -40,6 +40,8 @@ pub struct Program {
     module: Module,
     exprs: Vec<Expr>,
     compiled: Option<Compiled>,
+    /// The compiled entry of each expression (`#k`), looked up once.
+    entries: Vec<Entry>,
 }
 
 /// Index of a [`Program`] in [`Functions`].
@@ -68,8 +70,9 @@ struct Messages {
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 thread_local! {
-    /// Per thread, per program: the JIT's evaluation state.
-    static CONTEXTS: RefCell<HashMap<(u64, u32), Context>> = RefCell::new(HashMap::new());
+    /// Per thread, per program (by index): the JIT's evaluation state, and the
+    /// [`Functions`] it belongs to.
+    static CONTEXTS: RefCell<Vec<Option<(u64, Context)>>> = const { RefCell::new(Vec::new()) };
 }
 
 impl std::fmt::Debug for Functions {
@@ -107,6 +110,7 @@ impl Functions {
             module: module.clone(),
             exprs: Vec::new(),
             compiled: None,
+            entries: Vec::new(),
         });
         ProgramId(self.programs.len() as u32 - 1)
     }
@@ -143,6 +147,15 @@ impl Functions {
                     .with_policy(MathErrors::ErrnoOnly)
                     .compile_with_expressions(&p.module, &[], &exprs)
                     .ok();
+                let entries: Option<Vec<Entry>> = p.compiled.as_ref().and_then(|c| {
+                    (0..p.exprs.len())
+                        .map(|k| c.entry(&format!("#{k}")))
+                        .collect()
+                });
+                match entries {
+                    Some(e) => p.entries = e,
+                    None => p.compiled = None,
+                }
             }
         }
         self.compile_time = start.elapsed();
@@ -179,14 +192,22 @@ impl Functions {
         let program = self.programs.get(p.0 as usize)?;
         let (result, warnings) = match (&program.compiled, self.engine) {
             (Some(compiled), Engine::Jit) => CONTEXTS.with(|c| {
-                let mut map = c.borrow_mut();
-                let ctx = map
-                    .entry((self.id, p.0))
-                    .or_insert_with(|| compiled.context());
+                let mut slots = c.borrow_mut();
+                let i = p.0 as usize;
+                if slots.len() <= i {
+                    slots.resize_with(i + 1, || None);
+                }
+                let slot = &mut slots[i];
+                if slot.as_ref().is_none_or(|(id, _)| *id != self.id) {
+                    *slot = Some((self.id, compiled.context()));
+                }
+                let Some((_, ctx)) = slot.as_mut() else {
+                    return (Err(EvalError::NotAvailable("context".into())), Vec::new());
+                };
                 ctx.next_record();
                 let mut result = Ok(());
                 for (slot, &k) in out.iter_mut().zip(exprs) {
-                    let entry = compiled.entry(&format!("#{k}"));
+                    let entry = program.entries.get(k).copied();
                     match entry.map(|e| compiled.eval(e, ctx, input)) {
                         Some(Ok(v)) => *slot = v,
                         Some(Err(e)) => {
@@ -199,7 +220,12 @@ impl Functions {
                         }
                     }
                 }
-                (result, ctx.take_warnings())
+                let warnings = if ctx.has_warnings() {
+                    ctx.take_warnings()
+                } else {
+                    Vec::new()
+                };
+                (result, warnings)
             }),
             _ => {
                 let mut ev = Evaluator::new(&program.module).with_policy(MathErrors::ErrnoOnly);
