@@ -22,10 +22,15 @@ impl FileLookup for Beside {
     fn load(&self, name: &str, kind: FileKind, from: FileId) -> Option<(FileId, String)> {
         Some((FileId(1000), self.read(name, kind, from)?))
     }
+    fn read_head(&self, name: &str, _: FileKind, _: FileId, max: usize) -> Option<Vec<u8>> {
+        let mut bytes = std::fs::read(std::path::Path::new(SCENES).join(name)).ok()?;
+        bytes.truncate(max);
+        Some(bytes)
+    }
 }
 
-fn compiled(engine: Engine) -> Scene {
-    let text = std::fs::read_to_string(format!("{SCENES}/patterns.rad")).expect("scene");
+fn compiled(scene: &str, engine: Engine) -> Scene {
+    let text = std::fs::read_to_string(format!("{SCENES}/{scene}")).expect("scene");
     let (syntax, diags) = radc_lang::scene::parse(FileId(0), &text);
     assert!(diags.is_empty(), "{diags:?}");
     let input = LowerInput {
@@ -40,7 +45,21 @@ fn compiled(engine: Engine) -> Scene {
 
 #[test]
 fn jit_and_interpreter_shade_alike() {
-    let (jit, interp) = (compiled(Engine::Jit), compiled(Engine::Interpreter));
+    shade_alike("patterns.rad", 1000);
+}
+
+/// The data and picture patterns: coordinates and the functions applied to the
+/// values found run on both engines too.
+#[test]
+fn jit_and_interpreter_shade_data_patterns_alike() {
+    shade_alike("data_patterns.rad", 800);
+}
+
+fn shade_alike(scene: &str, min_seen: usize) {
+    let (jit, interp) = (
+        compiled(scene, Engine::Jit),
+        compiled(scene, Engine::Interpreter),
+    );
     assert!(jit.functions.is_some(), "the scene has patterns");
     let options = Options {
         ambient: radc_renderer::math::Color::splat(0.05),
@@ -59,10 +78,14 @@ fn jit_and_interpreter_shade_alike() {
             let (ca, cb) = (a.radiance(org, dir).color, b.radiance(org, dir).color);
             assert_eq!(
                 ca.to_array().map(f64::to_bits),
-                cb.to_array().map(f64::to_bits)
+                cb.to_array().map(f64::to_bits),
+                "{scene}"
             );
             compared += usize::from(ca.max_element() > 0.0);
         }
     }
-    assert!(compared > 1000, "{compared} rays saw something");
+    assert!(
+        compared > min_seen,
+        "{scene}: {compared} rays saw something"
+    );
 }
