@@ -69,8 +69,9 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             .collect();
         let rays = std::fs::read(trace_data().join(format!("{id}.rays"))).expect("rays");
         let rsc = dir.path().join(format!("{id}.rsc"));
-        if id.starts_with("patterns-") {
-            // Patterns are compiled at render time; a compiled scene cannot hold them.
+        if id.starts_with("patterns-") || id.starts_with("textures-") {
+            // Patterns and textures are compiled at render time; a compiled scene
+            // cannot hold them.
             let mut args = vec!["build", "-o", s(&rsc)];
             args.extend(scenes.iter().map(|p| s(p)));
             let o = radc(&args, b"");

@@ -393,6 +393,7 @@ const LAMBERTIAN: Normal = Normal {
     rough: 0.0,
     metal: false,
     transmission: None,
+    texture: Vec3::ZERO,
 };
 
 /// Evaluates rays in a compiled scene.
@@ -541,7 +542,8 @@ impl<'a> Tracer<'a> {
 
     /// `raytexture` before the material: the patterns give the colour (`pcol`) the
     /// material's or light's own colour is multiplied by (normal.c, source.c
-    /// `m_light`), then it is shaded with that colour.
+    /// `m_light`), the textures the perturbation of its normal (`pert`), then it is
+    /// shaded with them.
     fn shade_patterned(&self, r: &mut RayState, id: MaterialId, patterns: &[u32]) {
         let Some(material) = self.scene.material(id) else {
             return;
@@ -565,14 +567,18 @@ impl<'a> Tracer<'a> {
             uv: [0.0, 0.0],
         };
         let mut pcol = Color::ONE;
+        let mut pert = Vec3::ZERO;
         for &i in patterns {
             if let Some(p) = functions.patterns.get(i as usize) {
-                p.apply(functions, i, &view, &mut pcol);
+                p.apply(functions, i, &view, &mut pcol, &mut pert);
             }
         }
         let mut shaded = material.clone();
         match &mut shaded {
-            Material::Normal(n) => n.color *= pcol,
+            Material::Normal(n) => {
+                n.color *= pcol;
+                n.texture = pert;
+            }
             Material::Emitter(e) => e.color *= pcol,
             _ => {}
         }

@@ -171,6 +171,8 @@ struct Compiler<'a> {
     /// Pattern index per primitive, once compiled.
     pattern_of_prim: std::collections::HashMap<PrimId, u32>,
     material_patterns: Vec<Vec<u32>>,
+    /// The material each surface-level pattern chain ends in, compiled with the chain.
+    surface_chains: std::collections::HashMap<PrimId, (Option<MaterialId>, String)>,
 }
 
 /// Why radc refuses a modifier of this category where it sits: the renderer does not
@@ -199,6 +201,7 @@ impl<'a> Compiler<'a> {
             functions: Functions::new(),
             pattern_of_prim: std::collections::HashMap::new(),
             material_patterns: Vec::new(),
+            surface_chains: std::collections::HashMap::new(),
         }
     }
 
@@ -506,12 +509,121 @@ impl Compiler<'_> {
                 let name = p.name.clone();
                 (self.compile_material(id), name)
             }
-            category @ (Category::Pattern | Category::Texture | Category::Mixture) => {
+            Category::Pattern | Category::Texture => self.patterned_material(id),
+            category @ Category::Mixture => {
                 self.unsupported(id, not_modelled(category));
                 (None, String::new())
             }
             Category::Surface => (None, "void".into()),
         }
+    }
+
+    /// A surface modified by patterns or textures before its material (`rayshade`
+    /// applies each modifier until a material shades): the material compiled again
+    /// with those applied first. Its name (for `-om`) is the material's, as rtrace
+    /// reports the modifier that shades.
+    fn patterned_material(&mut self, first: PrimId) -> (Option<MaterialId>, String) {
+        if let Some(done) = self.surface_chains.get(&first) {
+            return done.clone();
+        }
+        let done = self.patterned_material_once(first);
+        self.surface_chains.insert(first, done.clone());
+        done
+    }
+
+    fn patterned_material_once(&mut self, first: PrimId) -> (Option<MaterialId>, String) {
+        let mut prefix = Vec::new();
+        let mut next = Some(first);
+        let depth = self.path.len();
+        let mut target = None;
+        while let Some(m) = next {
+            let Some(p) = self.ir.get(m) else { break };
+            if prefix.len() > self.ir.prims.len() {
+                break;
+            }
+            match p.category() {
+                Category::Pattern | Category::Texture if is_rendered_pattern(p.schema.name) => {
+                    let Some(i) = self.pattern(m) else {
+                        self.path.truncate(depth);
+                        return (None, String::new());
+                    };
+                    prefix.push((i, p.schema.name == "texfunc"));
+                    self.path.push(m);
+                    next = match p.modifier {
+                        ModRef::Prim(n) => Some(n),
+                        _ => None,
+                    };
+                }
+                Category::Material | Category::Light | Category::Alias => {
+                    target = Some(m);
+                    break;
+                }
+                category => {
+                    self.unsupported(m, not_modelled(category));
+                    self.path.truncate(depth);
+                    return (None, String::new());
+                }
+            }
+        }
+        let Some(target) = target else {
+            // Nothing shades: the ray passes, the patterns change nothing.
+            self.path.truncate(depth);
+            return (None, "void".into());
+        };
+        let name = self
+            .ir
+            .get(target)
+            .map(|p| p.name.clone())
+            .unwrap_or_default();
+        let base = self.compile_material(target);
+        self.path.truncate(depth);
+        let Some(base) = base else {
+            return (None, name);
+        };
+        let Some(material) = self.scene.material(base).cloned() else {
+            return (None, name);
+        };
+        let textures_fit = matches!(&material, Material::Normal(n) if n.transmission.is_none());
+        let patterns_fit = matches!(material, Material::Normal(_) | Material::Emitter(_));
+        if let Some(&(i, texture)) = prefix.iter().find(|(_, texture)| {
+            if *texture {
+                !textures_fit
+            } else {
+                !patterns_fit
+            }
+        }) {
+            let who = self
+                .functions
+                .patterns
+                .get(i as usize)
+                .map(|p| p.who.clone());
+            let id = self
+                .pattern_of_prim
+                .iter()
+                .find(|(_, v)| **v == i)
+                .map(|(k, _)| *k);
+            if let (Some(id), Some(_)) = (id, who) {
+                self.unsupported(
+                    id,
+                    if texture {
+                        "textures on this material type are not rendered yet"
+                    } else {
+                        "patterns on this material type are not rendered yet"
+                    },
+                );
+            }
+            return (None, name);
+        }
+        let mut patterns: Vec<u32> = prefix.iter().map(|(i, _)| *i).collect();
+        if let Some(own) = self.material_patterns.get(base.0 as usize) {
+            patterns.extend(own);
+        }
+        let mid = MaterialId(self.scene.materials.len() as u32);
+        self.scene.materials.push(material);
+        self.material_patterns
+            .resize(self.scene.materials.len(), Vec::new());
+        self.material_patterns[mid.0 as usize] = patterns;
+        (Some(mid), name)
     }
 
     fn compile_material(&mut self, id: PrimId) -> Option<MaterialId> {
@@ -543,27 +655,34 @@ impl Compiler<'_> {
                 break;
             }
             let Some(p) = self.ir.get(m) else { break };
+            // Textures perturb the normal of plastic and metal (trans bends its
+            // transmitted ray by them too, which is not modelled yet); lights have none.
+            let texture = p.schema.name == "texfunc";
             let takes = self.ir.get(kind).is_some_and(|k| {
-                matches!(
-                    k.kind,
-                    PrimKind::Plastic { .. }
-                        | PrimKind::Metal { .. }
-                        | PrimKind::Trans { .. }
-                        | PrimKind::Light { .. }
-                        | PrimKind::Glow { .. }
-                        | PrimKind::Spotlight { .. }
-                )
+                matches!(k.kind, PrimKind::Plastic { .. } | PrimKind::Metal { .. })
+                    || (!texture && matches!(k.kind, PrimKind::Trans { .. }))
+                    || (!texture
+                        && matches!(
+                            k.kind,
+                            PrimKind::Light { .. }
+                                | PrimKind::Glow { .. }
+                                | PrimKind::Spotlight { .. }
+                        ))
             });
-            if !matches!(
-                p.schema.name,
-                "brightfunc" | "colorfunc" | "brightdata" | "colordata" | "colorpict"
-            ) {
+            if !is_rendered_pattern(p.schema.name) {
                 self.unsupported(m, not_modelled(p.category()));
                 result = None;
                 break;
             }
             if !takes {
-                self.unsupported(m, "patterns on this material type are not rendered yet");
+                self.unsupported(
+                    m,
+                    if texture {
+                        "textures on this material type are not rendered yet"
+                    } else {
+                        "patterns on this material type are not rendered yet"
+                    },
+                );
                 result = None;
                 break;
             }
@@ -584,8 +703,8 @@ impl Compiler<'_> {
         result.map(|()| patterns)
     }
 
-    /// Compiles pattern primitive `id` (brightfunc, colorfunc, brightdata, colordata,
-    /// colorpict) into the scene's functions, once.
+    /// Compiles pattern primitive `id` (brightfunc, colorfunc, texfunc, brightdata,
+    /// colordata, colorpict) into the scene's functions, once.
     fn pattern(&mut self, id: PrimId) -> Option<u32> {
         if let Some(&i) = self.pattern_of_prim.get(&id) {
             return Some(i);
@@ -652,6 +771,8 @@ impl Compiler<'_> {
             exprs: indices,
             args: reals.clone(),
             inverse,
+            forward: (p.transform != radc_lang::transform::Transform::IDENTITY)
+                .then_some(p.transform),
         });
         self.pattern_of_prim.insert(id, index);
         Some(index)
@@ -678,6 +799,7 @@ impl Compiler<'_> {
         Ok(match source {
             PatternSource::Bright => PatternKind::Bright,
             PatternSource::Color => PatternKind::Color,
+            PatternSource::Texture => PatternKind::Texture,
             PatternSource::BrightData(data) => PatternKind::BrightData(DataLookup {
                 source: DataSource::Bright(data),
                 functions: calls(&strings[..1], false)?,
@@ -719,6 +841,7 @@ impl Compiler<'_> {
                 rough: *rough,
                 metal: false,
                 transmission: None,
+                texture: Vec3::ZERO,
             }),
             PrimKind::Trans {
                 color,
@@ -1002,6 +1125,15 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
     (out, illegal)
 }
 
+/// The patterns and textures the renderer runs (`pattern` compiles them); any other
+/// modifier in a chain is refused by name.
+fn is_rendered_pattern(name: &str) -> bool {
+    matches!(
+        name,
+        "brightfunc" | "colorfunc" | "texfunc" | "brightdata" | "colordata" | "colorpict"
+    )
+}
+
 /// Where a pattern's strings sit (p_func.c, p_data.c: which are expressions, which
 /// the function file) and the data or picture it reads.
 struct PatternLayout {
@@ -1013,6 +1145,7 @@ struct PatternLayout {
 enum PatternSource {
     Bright,
     Color,
+    Texture,
     BrightData(std::sync::Arc<radc_lang::datafile::DataFile>),
     ColorData([std::sync::Arc<radc_lang::datafile::DataFile>; 3]),
     ColorPict(std::sync::Arc<radc_picture::ColorPicture>),
@@ -1036,6 +1169,7 @@ impl PatternLayout {
         let (at, first, source, dims) = match kind {
             "brightfunc" => (1, 0, Ok(PatternSource::Bright), 1),
             "colorfunc" => (3, 0, Ok(PatternSource::Color), 3),
+            "texfunc" => (3, 0, Ok(PatternSource::Texture), 3),
             "brightdata" => {
                 let d = file(strings.get(1)?);
                 let dims = d.as_ref().map_or(0, |d| d.dimensions());

@@ -45,17 +45,19 @@ fn compiled(scene: &str, engine: Engine) -> Scene {
 
 #[test]
 fn jit_and_interpreter_shade_alike() {
-    shade_alike("patterns.rad", 1000);
+    for scene in ["patterns.rad", "textures.rad"] {
+        same_pixels(scene, 1000);
+    }
 }
 
 /// The data and picture patterns: coordinates and the functions applied to the
 /// values found run on both engines too.
 #[test]
 fn jit_and_interpreter_shade_data_patterns_alike() {
-    shade_alike("data_patterns.rad", 800);
+    same_pixels("data_patterns.rad", 800);
 }
 
-fn shade_alike(scene: &str, min_seen: usize) {
+fn same_pixels(scene: &str, min_seen: usize) {
     let (jit, interp) = (
         compiled(scene, Engine::Jit),
         compiled(scene, Engine::Interpreter),
@@ -78,8 +80,7 @@ fn shade_alike(scene: &str, min_seen: usize) {
             let (ca, cb) = (a.radiance(org, dir).color, b.radiance(org, dir).color);
             assert_eq!(
                 ca.to_array().map(f64::to_bits),
-                cb.to_array().map(f64::to_bits),
-                "{scene}"
+                cb.to_array().map(f64::to_bits)
             );
             compared += usize::from(ca.max_element() > 0.0);
         }
@@ -87,5 +88,19 @@ fn shade_alike(scene: &str, min_seen: usize) {
     assert!(
         compared > min_seen,
         "{scene}: {compared} rays saw something"
+    );
+}
+
+/// Only what the patterns reach is compiled: patterns.cal and rayinit.cal define far
+/// more than the scene's expressions use.
+#[test]
+fn only_reachable_definitions_are_compiled() {
+    let scene = compiled("patterns.rad", Engine::Jit);
+    let f = scene.functions.as_deref().expect("functions");
+    let (compiled, loaded) = (f.compiled_definitions(), f.loaded_definitions());
+    assert!(compiled > 0, "something is compiled");
+    assert!(
+        compiled * 4 < loaded,
+        "{compiled} of {loaded} definitions compiled"
     );
 }

@@ -270,6 +270,14 @@ def cases():
     case("patterns-view", "patterns.rad", ["-av", ".05", ".05", ".05"], pat_view, "-ovL")
     case("patterns-irradiance", "patterns.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    tex_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .5], spread=2.5)
+    tex_view += box_rays(rng, 30, [-2.5, -2, .5], [-.5, -1, 1.5], toward=[-1.5, 0, 1], spread=.6)
+    tex_view += box_rays(rng, 20, [-2, 0, 1], [2, 2, 2], toward=[0, 3, 2], spread=1)
+    tex_view += box_rays(rng, 40, [1, -4, 1], [3, -3, 2], toward=[2, -1.2, .3], spread=.5)
+    tex_view += box_rays(rng, 30, [0, -3, .8], [2, -2.5, 1.6], toward=[1.2, -1, 1.15], spread=.3)
+    case("textures-view", "textures.rad", ["-av", ".05", ".05", ".05"], tex_view, "-ovL")
+    case("textures-irradiance", "textures.rad", ["-I"],
+         irradiance_points(rng, 30, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     data_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .8], spread=2.5)
     data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[.5, 2.9, 1.5], spread=1.2)
     data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[-1.5, 0, 1], spread=.8)

@@ -58,6 +58,8 @@ pub struct Functions {
     pub patterns: Vec<Pattern>,
     /// Warnings (once each) and errors met while rendering, for the front end to print.
     messages: Mutex<Messages>,
+    /// How long [`Functions::compile`] took.
+    pub compile_time: std::time::Duration,
 }
 
 #[derive(Default)]
@@ -91,6 +93,7 @@ impl Functions {
             programs: Vec::new(),
             patterns: Vec::new(),
             messages: Mutex::new(Messages::default()),
+            compile_time: std::time::Duration::ZERO,
         }
     }
 
@@ -146,7 +149,23 @@ impl Functions {
                     .ok();
             }
         }
-        start.elapsed()
+        self.compile_time = start.elapsed();
+        self.compile_time
+    }
+
+    /// Definitions the JIT compiled, over all programs: only what the patterns'
+    /// expressions reach (of rayinit.cal's and each file's definitions).
+    pub fn compiled_definitions(&self) -> usize {
+        self.programs
+            .iter()
+            .filter_map(|p| p.compiled.as_ref())
+            .map(Compiled::function_count)
+            .sum()
+    }
+
+    /// Definitions the programs' modules hold in all.
+    pub fn loaded_definitions(&self) -> usize {
+        self.programs.iter().map(|p| p.module.defs().len()).sum()
     }
 
     /// Evaluates expressions `exprs` of program `p` for one (primitive, ray): the

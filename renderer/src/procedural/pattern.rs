@@ -9,13 +9,15 @@ use super::channels::{Channels, RayView};
 use super::data::DataLookup;
 use super::picture::PictureLookup;
 use super::{Functions, ProgramId, RayInput};
-use crate::math::Color;
+use crate::math::{Color, Vec3};
 
 /// What a pattern computes its value(s) from, with what that takes.
 #[derive(Clone, Debug)]
 pub enum PatternKind {
     Bright,
     Color,
+    /// `texfunc` (t_func.c): three expressions displace the surface normal.
+    Texture,
     /// `brightdata`: the pattern's expressions are the data coordinates.
     BrightData(DataLookup),
     /// `colordata`: likewise, three files.
@@ -38,16 +40,26 @@ pub struct Pattern {
     pub args: Vec<f64>,
     /// The inverse of its transform, scale made positive (func.c's `bxp`).
     pub inverse: Transform,
+    /// Its transform (`fxp`), for a texture's displacement; `None` for none.
+    pub forward: Option<Transform>,
 }
 
 impl Pattern {
     /// Multiplies `pcol` by this pattern's value for the ray, as `p_bfunc`/`p_cfunc`
-    /// do; leaves it unchanged where the evaluation raised an error.
-    pub fn apply(&self, functions: &Functions, index: u32, ray: &RayView, pcol: &mut Color) {
+    /// do, or adds a texture's displacement to `pert` (`t_func`); leaves both
+    /// unchanged where the evaluation raised an error.
+    pub fn apply(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
+        pcol: &mut Color,
+        pert: &mut Vec3,
+    ) {
         let channels = Channels::new(ray, &self.inverse);
         let (program, coords, args) = (self.program, &self.exprs[..], &self.args[..]);
         let v = match &self.kind {
-            PatternKind::Bright | PatternKind::Color => {
+            PatternKind::Bright | PatternKind::Color | PatternKind::Texture => {
                 let mut input = RayInput {
                     channels: &channels,
                     args,
@@ -80,6 +92,16 @@ impl Pattern {
                     f(pcol.y, f64::from(v[1] as f32)),
                     f(pcol.z, f64::from(v[2] as f32)),
                 )
+            }
+            PatternKind::Texture => {
+                // The displacement turns (and scales) with the texture (`multv3` by
+                // `fxp`).
+                let d = match &self.forward {
+                    Some(xf) => xf.vector(v),
+                    None => v,
+                };
+                *pert += Vec3::new(d[0], d[1], d[2]);
+                return;
             }
         };
     }
