@@ -282,6 +282,7 @@ def cases():
     data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[.5, 2.9, 1.5], spread=1.2)
     data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[-1.5, 0, 1], spread=.8)
     data_view += box_rays(rng, 20, [-1, -1, 1.5], [1, 1, 2.5], toward=[0, 0, 8], spread=3)
+    data_view += box_rays(rng, 20, [-1, -3, .5], [2, -2.5, 1.5], toward=[.5, -1, .4], spread=.3)
     case("data_patterns-view", "data_patterns.rad", ["-av", ".05", ".05", ".05"], data_view, "-ovL")
     case("data_patterns-irradiance", "data_patterns.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
