@@ -69,7 +69,10 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             .collect();
         let rays = std::fs::read(trace_data().join(format!("{id}.rays"))).expect("rays");
         let rsc = dir.path().join(format!("{id}.rsc"));
-        if id.starts_with("patterns-") || id.starts_with("textures-") {
+        if ["patterns-", "textures-", "data_patterns-"]
+            .iter()
+            .any(|p| id.starts_with(p))
+        {
             // Patterns and textures are compiled at render time; a compiled scene
             // cannot hold them.
             let mut args = vec!["build", "-o", s(&rsc)];
