@@ -868,7 +868,7 @@ impl<'a> Tracer<'a> {
         let mut trans_illum = None;
         for (i, d) in self.scene.distant.iter().enumerate() {
             let i = i as u32;
-            if 2.0 * std::f64::consts::PI * (1.0 - d.direction.dot(r.dir)) > d.solid_angle {
+            if crate::lights::cap_solid_angle(d.direction.dot(r.dir)) > d.solid_angle {
                 continue;
             }
             if aimed == Some(SourceTarget::Distant(i)) {

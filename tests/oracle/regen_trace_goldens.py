@@ -278,6 +278,12 @@ def cases():
     case("textures-view", "textures.rad", ["-av", ".05", ".05", ".05"], tex_view, "-ovL")
     case("textures-irradiance", "textures.rad", ["-I"],
          irradiance_points(rng, 30, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    day_view = box_rays(rng, 40, [1, 1, 1], [3, 4, 2], toward=[2, 0, 1.75], spread=.8)
+    day_view += [[x, 3.0, z, dx, -1.0, 0.0]
+                 for x, z, dx in ((1.5, 1.2, 0), (2, 1.5, .1), (2.5, 2, -.2), (2, 2.4, .05))]
+    case("daylight-view", "daylight.rad", ["-av", ".05", ".05", ".05"], day_view, "-ovL")
+    case("daylight-irradiance", "daylight.rad", ["-I"],
+         irradiance_points(rng, 30, [.2, .2, .8], [3.8, 4.8, .8], [(0, 0, 1)]))
     data_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .8], spread=2.5)
     data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[.5, 2.9, 1.5], spread=1.2)
     data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[-1.5, 0, 1], spread=.8)
