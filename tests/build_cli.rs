@@ -69,7 +69,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             .collect();
         let rays = std::fs::read(trace_data().join(format!("{id}.rays"))).expect("rays");
         let rsc = dir.path().join(format!("{id}.rsc"));
-        if ["patterns-", "textures-", "daylight-"]
+        if ["patterns-", "textures-", "daylight-", "data_patterns-"]
             .iter()
             .any(|p| id.starts_with(p))
         {

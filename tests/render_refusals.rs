@@ -74,11 +74,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
     let body = match type_name {
         "instance" => "void instance x 1 o.oct 0 0\n".to_string(),
         "mesh" => "void mesh x 1 m.rtm 0 0\n".to_string(),
-        "brightdata" => pattern_on_material("void brightdata x 4 f d.dat f.cal Px 0 0"),
-        "colordata" => {
-            pattern_on_material("void colordata x 8 f f f d.dat d.dat d.dat f.cal Px 0 0")
-        }
-        "colorpict" => pattern_on_material("void colorpict x 7 f f f p.hdr f.cal Px Py 0 0"),
         "brighttext" => {
             pattern_on_material("void brighttext x 3 t.fnt . A 0 11 0 0 0 1 0 0 0 1 0 1 0")
         }
@@ -260,8 +255,8 @@ fn unmodelled_modifiers_are_refused_wherever_they_sit() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_auxiliary_files(dir.path());
     let floor = |m: &str| format!("{m} polygon floor 0 0 12 -5 -5 0 5 -5 0 5 5 0 -5 5 0\n");
-    // brightdata: a pattern the renderer does not run yet.
-    let pattern = "void brightdata p 4 f d.dat f.cal Px 0 0\n";
+    // specdata: a pattern the renderer does not run yet.
+    let pattern = "void specdata p 4 f d.dat f.cal Px 0 0\n";
     let cases: Vec<(&str, String, &str)> = vec![
         (
             "on a material",
@@ -326,7 +321,7 @@ fn unmodelled_modifiers_are_refused_wherever_they_sit() {
         (
             "modifying a pattern on a material",
             format!(
-                "{pattern}p brightdata q 4 f d.dat f.cal Px 0 0\nq plastic m 0 0 5 .5 .5 .5 0 0\n{}",
+                "{pattern}p specdata q 4 f d.dat f.cal Px 0 0\nq plastic m 0 0 5 .5 .5 .5 0 0\n{}",
                 floor("m")
             ),
             "(used by plastic 'm', used by polygon 'floor')",
@@ -335,9 +330,9 @@ fn unmodelled_modifiers_are_refused_wherever_they_sit() {
     for (context, scene, chain) in cases {
         let v = judge(dir.path(), &format!("{LIGHT}{scene}"));
         let who = if context.starts_with("modifying a pattern") {
-            "brightdata 'q'"
+            "specdata 'q'"
         } else {
-            "brightdata 'p'"
+            "specdata 'p'"
         };
         assert_refused(&v, who, context);
         assert!(

@@ -15,7 +15,9 @@ use crate::materials::mirror::Mirror;
 use crate::materials::mist::Mist;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
-use crate::procedural::{Engine, Functions, Pattern, PatternKind};
+use crate::procedural::{
+    DataLookup, DataSource, Engine, Functions, Pattern, PatternKind, PictureLookup, ProgramId,
+};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 use crate::surfaces::Surfaces;
 
@@ -540,9 +542,7 @@ impl Compiler<'_> {
                 break;
             }
             match p.category() {
-                Category::Pattern | Category::Texture
-                    if matches!(p.schema.name, "brightfunc" | "colorfunc" | "texfunc") =>
-                {
+                Category::Pattern | Category::Texture if is_rendered_pattern(p.schema.name) => {
                     let Some(i) = self.pattern(m) else {
                         self.path.truncate(depth);
                         return (None, String::new());
@@ -669,7 +669,7 @@ impl Compiler<'_> {
                                 | PrimKind::Spotlight { .. }
                         ))
             });
-            if !matches!(p.schema.name, "brightfunc" | "colorfunc" | "texfunc") {
+            if !is_rendered_pattern(p.schema.name) {
                 self.unsupported(m, not_modelled(p.category()));
                 result = None;
                 break;
@@ -703,8 +703,8 @@ impl Compiler<'_> {
         result.map(|()| patterns)
     }
 
-    /// Compiles pattern primitive `id` (a brightfunc or colorfunc) into the scene's
-    /// functions, once.
+    /// Compiles pattern primitive `id` (brightfunc, colorfunc, texfunc, brightdata,
+    /// colordata, colorpict) into the scene's functions, once.
     fn pattern(&mut self, id: PrimId) -> Option<u32> {
         if let Some(&i) = self.pattern_of_prim.get(&id) {
             return Some(i);
@@ -714,22 +714,25 @@ impl Compiler<'_> {
             self.unsupported(id, "its arguments could not be read");
             return None;
         };
-        let (kind, nexprs) = match p.schema.name {
-            "brightfunc" => (PatternKind::Bright, 1),
-            "texfunc" => (PatternKind::Texture, 3),
-            _ => (PatternKind::Color, 3),
-        };
-        let (Some(exprs), Some(file)) = (strings.get(..nexprs), strings.get(nexprs)) else {
+        let Some(layout) = PatternLayout::of(p.schema.name, strings, &self.ir.data) else {
             self.unsupported(id, "too few string arguments");
             return None;
         };
+        let layout = match layout {
+            Ok(layout) => layout,
+            Err(why) => {
+                self.refuse_with(id, why);
+                return None;
+            }
+        };
+        let file = &strings[layout.file];
         let Some(module) = self.ir.functions.0.get(file.as_str()) else {
             self.unsupported(id, "its function file could not be loaded");
             return None;
         };
         let program = self.functions.program(file, module);
         let mut indices = Vec::new();
-        for e in exprs {
+        for e in &strings[layout.exprs.clone()] {
             match self.functions.add_expression(program, e) {
                 Ok(k) => indices.push(k),
                 Err(why) => {
@@ -738,8 +741,19 @@ impl Compiler<'_> {
                 }
             }
         }
-        // The transform starts at the first option after the file (func.c `getfunc`).
-        let words: Vec<(&str, radc_lang::Span)> = strings[nexprs + 1..]
+        let kind = match self.pattern_kind(program, strings, layout.source) {
+            Ok(kind) => kind,
+            Err(why) => {
+                self.refuse_with(id, why);
+                return None;
+            }
+        };
+        if matches!(kind, PatternKind::BrightData(_)) {
+            indices.reverse();
+        }
+        // The transform starts at the first option after the file and the
+        // expressions (func.c `getfunc`).
+        let words: Vec<(&str, radc_lang::Span)> = strings[layout.exprs.end.max(layout.file + 1)..]
             .iter()
             .skip_while(|w| !radc_lang::schema::is_transform_option(w))
             .map(|w| (w.as_str(), radc_lang::Span::default()))
@@ -762,6 +776,43 @@ impl Compiler<'_> {
         });
         self.pattern_of_prim.insert(id, index);
         Some(index)
+    }
+
+    /// What a pattern evaluates, with its data or picture and the function calls
+    /// p_data.c applies to the values found (in `program`).
+    fn pattern_kind(
+        &mut self,
+        program: ProgramId,
+        strings: &[String],
+        source: PatternSource,
+    ) -> Result<PatternKind, String> {
+        let mut calls = |names: &[String], triple: bool| -> Result<Vec<usize>, String> {
+            names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| {
+                    self.functions
+                        .add_data_function(program, n, i as u32, triple)
+                })
+                .collect()
+        };
+        Ok(match source {
+            PatternSource::Bright => PatternKind::Bright,
+            PatternSource::Color => PatternKind::Color,
+            PatternSource::Texture => PatternKind::Texture,
+            PatternSource::BrightData(data) => PatternKind::BrightData(DataLookup {
+                source: DataSource::Bright(data),
+                functions: calls(&strings[..1], false)?,
+            }),
+            PatternSource::ColorData(data) => PatternKind::ColorData(DataLookup {
+                source: DataSource::Color(data),
+                functions: calls(&strings[..3], true)?,
+            }),
+            PatternSource::ColorPict(picture) => PatternKind::ColorPict(PictureLookup {
+                picture,
+                functions: calls(&strings[..3], true)?,
+            }),
+        })
     }
 
     /// The modifier a material is shaded with: an alias's own (`mod alias new old`
@@ -1072,6 +1123,111 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
         });
     }
     (out, illegal)
+}
+
+/// The patterns and textures the renderer runs (`pattern` compiles them); any other
+/// modifier in a chain is refused by name.
+fn is_rendered_pattern(name: &str) -> bool {
+    matches!(
+        name,
+        "brightfunc" | "colorfunc" | "texfunc" | "brightdata" | "colordata" | "colorpict"
+    )
+}
+
+/// Where a pattern's strings sit (p_func.c, p_data.c: which are expressions, which
+/// the function file) and the data or picture it reads.
+struct PatternLayout {
+    file: usize,
+    exprs: std::ops::Range<usize>,
+    source: PatternSource,
+}
+
+enum PatternSource {
+    Bright,
+    Color,
+    Texture,
+    BrightData(std::sync::Arc<radc_lang::datafile::DataFile>),
+    ColorData([std::sync::Arc<radc_lang::datafile::DataFile>; 3]),
+    ColorPict(std::sync::Arc<radc_picture::ColorPicture>),
+}
+
+impl PatternLayout {
+    /// `None` when the strings are too few (getfunc's "too few string arguments",
+    /// p_data.c's "bad # arguments"); an error when a file is unusable.
+    fn of(
+        kind: &str,
+        strings: &[String],
+        data: &radc_lang::scene::ir::AuxData,
+    ) -> Option<Result<PatternLayout, String>> {
+        let file = |name: &String| {
+            data.files
+                .get(name.as_str())
+                .cloned()
+                .ok_or_else(|| format!("its data file '{name}' could not be loaded"))
+        };
+        // (function file index, first expression, the source, its dimensions)
+        let (at, first, source, dims) = match kind {
+            "brightfunc" => (1, 0, Ok(PatternSource::Bright), 1),
+            "colorfunc" => (3, 0, Ok(PatternSource::Color), 3),
+            "texfunc" => (3, 0, Ok(PatternSource::Texture), 3),
+            "brightdata" => {
+                let d = file(strings.get(1)?);
+                let dims = d.as_ref().map_or(0, |d| d.dimensions());
+                (2, 3, d.map(PatternSource::BrightData), dims)
+            }
+            "colordata" => {
+                let d = (
+                    file(strings.get(3)?),
+                    file(strings.get(4)?),
+                    file(strings.get(5)?),
+                );
+                let d = match d {
+                    (Ok(r), Ok(g), Ok(b))
+                        if r.dimensions() == g.dimensions() && r.dimensions() == b.dimensions() =>
+                    {
+                        Ok([r, g, b])
+                    }
+                    (Ok(_), Ok(_), Ok(_)) => Err("dimension error: its data files differ in \
+                        dimensions"
+                        .to_string()),
+                    (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => Err(e),
+                };
+                let dims = d.as_ref().map_or(0, |d| d[0].dimensions());
+                (6, 7, d.map(PatternSource::ColorData), dims)
+            }
+            "colorpict" => {
+                let name = strings.get(3)?;
+                let picture = data
+                    .pictures
+                    .get(name.as_str())
+                    .ok_or_else(|| format!("its picture '{name}' could not be loaded"))
+                    .and_then(|bytes| {
+                        radc_picture::Picture::read(bytes)
+                            .and_then(|p| radc_picture::ColorPicture::new(&p))
+                            .map_err(|e| format!("bad picture file '{name}': {e}"))
+                    });
+                (
+                    4,
+                    5,
+                    picture.map(|p| PatternSource::ColorPict(std::sync::Arc::new(p))),
+                    2,
+                )
+            }
+            _ => return Some(Err(format!("{kind} patterns are not rendered yet"))),
+        };
+        let source = match source {
+            Ok(s) => s,
+            Err(e) => return Some(Err(e)),
+        };
+        strings.get(at)?;
+        let exprs = first..first + dims;
+        strings.get(exprs.clone())?;
+        Some(Ok(PatternLayout {
+            file: at,
+            exprs,
+            source,
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -284,7 +284,31 @@ def cases():
     case("daylight-view", "daylight.rad", ["-av", ".05", ".05", ".05"], day_view, "-ovL")
     case("daylight-irradiance", "daylight.rad", ["-I"],
          irradiance_points(rng, 30, [.2, .2, .8], [3.8, 4.8, .8], [(0, 0, 1)]))
+    data_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .8], spread=2.5)
+    data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[.5, 2.9, 1.5], spread=1.2)
+    data_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[-1.5, 0, 1], spread=.8)
+    data_view += box_rays(rng, 20, [-1, -1, 1.5], [1, 1, 2.5], toward=[0, 0, 8], spread=3)
+    data_view += box_rays(rng, 20, [-1, -3, .5], [2, -2.5, 1.5], toward=[.5, -1, .4], spread=.3)
+    case("data_patterns-view", "data_patterns.rad", ["-av", ".05", ".05", ".05"], data_view, "-ovL")
+    case("data_patterns-irradiance", "data_patterns.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     return out
+
+
+def make_poster():
+    """The colorpict picture: drawn by the oracle's pcomb (RLE scanlines), with its
+    capture-time lines dropped so the file is the same each run, and a pixel aspect
+    ratio added (colorpict sizes the picture by it)."""
+    p = subprocess.run(
+        ["pcomb", "-x", "12", "-y", "8", "-e", "ro=x/12;go=y/8;bo=if(x-6,1,.2)"],
+        capture_output=True,
+        check=True,
+    )
+    head, sep, rest = p.stdout.partition(b"\n\n")
+    lines = [l for l in head.split(b"\n") if not l.startswith((b"CAPDATE=", b"GMT="))]
+    lines.append(b"PIXASPECT=1.5")
+    with open(os.path.join(SCENES, "poster.hdr"), "wb") as f:
+        f.write(b"\n".join(lines) + sep + rest)
 
 
 def fmt(rays):
@@ -325,6 +349,8 @@ def close(a, b):
 
 def main():
     check = "--check" in sys.argv[1:]
+    if not check:
+        make_poster()
     all_cases = cases()
     failed = []
     manifest = []

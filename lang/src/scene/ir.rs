@@ -184,6 +184,24 @@ pub struct Scene {
     /// rayinit.cal, in the file's context), by name as written (`.` for none); only
     /// files that loaded without errors.
     pub functions: FunctionModules,
+    /// The data files and pictures reachable primitives name (brightdata, colordata,
+    /// colorpict, ...), by name as written: the renderer never reads files, so what
+    /// p_data.c's `getdata`/`getpict` would load travels here.
+    pub data: AuxData,
+}
+
+/// Loaded data files (parsed) and pictures (their bytes, decoded by the renderer),
+/// only those that loaded. Compared by name only, like [`FunctionModules`].
+#[derive(Clone, Debug, Default)]
+pub struct AuxData {
+    pub files: std::collections::BTreeMap<String, std::sync::Arc<crate::datafile::DataFile>>,
+    pub pictures: std::collections::BTreeMap<String, std::sync::Arc<Vec<u8>>>,
+}
+
+impl PartialEq for AuxData {
+    fn eq(&self, other: &Self) -> bool {
+        self.files.keys().eq(other.files.keys()) && self.pictures.keys().eq(other.pictures.keys())
+    }
 }
 
 /// Loaded function files by name. Compared by name only: a module is a function of

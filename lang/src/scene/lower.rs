@@ -138,6 +138,11 @@ pub struct Lowering<'a> {
     more_users: HashMap<usize, Vec<PrimId>>,
     /// Function files loaded so far, by name as written (`None`: could not be loaded).
     function_files: HashMap<String, Option<FunctionFile>>,
+    /// Data files parsed so far, by name as written (`None`: missing or unreadable).
+    data_files: HashMap<String, Option<std::sync::Arc<crate::datafile::DataFile>>>,
+    /// Pictures named, with the file naming each: read in `finish`, and only for a
+    /// render (`Keep::Everything`) and reachable primitives, as they can be large.
+    picture_files: HashMap<String, FileId>,
 }
 
 impl<'a> Lowering<'a> {
@@ -162,6 +167,8 @@ impl<'a> Lowering<'a> {
             commands,
             deferred: Vec::new(),
             function_files: HashMap::new(),
+            data_files: HashMap::new(),
+            picture_files: HashMap::new(),
             missing_files: HashMap::new(),
             more_users: HashMap::new(),
         }
@@ -187,9 +194,67 @@ impl<'a> Lowering<'a> {
                     .insert(name, std::sync::Arc::new(f.module));
             }
         }
+        self.keep_aux_data();
         (self.scene, self.diags)
     }
+
+    /// Moves the data files and pictures that reachable primitives name into the
+    /// scene (p_data.c loads a file when a ray first meets its pattern: unreachable
+    /// ones cost nothing).
+    fn keep_aux_data(&mut self) {
+        if self.data_files.is_empty() && self.picture_files.is_empty() {
+            return;
+        }
+        let reachable = self.scene.reachable();
+        let mut named: HashSet<&str> = HashSet::new();
+        for (p, _) in self.scene.prims.iter().zip(&reachable).filter(|(_, r)| **r) {
+            if let PrimKind::Other { strings, .. } = &p.kind {
+                named.extend(strings.iter().map(String::as_str));
+            }
+        }
+        for (name, file) in &self.data_files {
+            if let Some(file) = file.as_ref().filter(|_| named.contains(name.as_str())) {
+                self.scene.data.files.insert(name.clone(), file.clone());
+            }
+        }
+        if self.keep != Keep::Everything {
+            return;
+        }
+        for (name, &from) in &self.picture_files {
+            if named.contains(name.as_str())
+                && let Some(bytes) =
+                    self.files
+                        .read_head(name, FileKind::Picture, from, MAX_PICTURE_BYTES)
+            {
+                self.scene
+                    .data
+                    .pictures
+                    .insert(name.clone(), std::sync::Arc::new(bytes));
+            }
+        }
+    }
+
+    /// A data file by name, parsed once.
+    fn data_file(
+        &mut self,
+        name: &str,
+        from: FileId,
+    ) -> Option<std::sync::Arc<crate::datafile::DataFile>> {
+        if let Some(known) = self.data_files.get(name) {
+            return known.clone();
+        }
+        let parsed = self
+            .files
+            .read(name, FileKind::Data, from)
+            .and_then(|t| crate::datafile::DataFile::parse(&t).ok())
+            .map(std::sync::Arc::new);
+        self.data_files.insert(name.to_string(), parsed.clone());
+        parsed
+    }
 }
+
+/// The largest picture read for a render (a 4096x4096 flat RGBE picture is 64 MiB).
+const MAX_PICTURE_BYTES: usize = 256 << 20;
 
 /// Surface names and where they were defined, only ever read to explain an error.
 /// They are stored packed, and indexed on the first error that needs them.
@@ -763,6 +828,7 @@ impl Lowering<'_> {
                 continue;
             }
             if kind == FileKind::Data
+                && !matches!(self.data_files.get(&w.text), Some(Some(_)))
                 && let Some(text) = self.files.read(&w.text, kind, w.span.file)
                 && let Err(e) = crate::datafile::DataFile::parse(&text)
             {
@@ -775,6 +841,11 @@ impl Lowering<'_> {
                     .with_hint("see the Radiance reference manual, section 2.2.2, for the data file layout"),
                 );
                 continue;
+            }
+            if kind == FileKind::Picture {
+                self.picture_files
+                    .entry(w.text.clone())
+                    .or_insert(w.span.file);
             }
             if kind == FileKind::Picture
                 && let Some(head) = self.files.read_head(&w.text, kind, w.span.file, 2)
@@ -1014,11 +1085,7 @@ impl Lowering<'_> {
             match schema.strings.arg_in(i, &words).map(|(a, _)| a.kind) {
                 Some(StringKind::File(FileKind::Cal)) if cal_at.is_none() => cal_at = Some(i),
                 Some(StringKind::File(FileKind::Data)) => {
-                    let parsed = self
-                        .files
-                        .read(&w.text, FileKind::Data, w.span.file)
-                        .and_then(|t| crate::datafile::DataFile::parse(&t).ok());
-                    if let Some(d) = parsed {
+                    if let Some(d) = self.data_file(&w.text, w.span.file) {
                         dims = Some(dims.unwrap_or(0).max(d.dimensions()));
                         data_word = Some(w);
                     }

@@ -9,10 +9,14 @@
 //! the scene compiler from the modifier chains it meets).
 
 mod channels;
+mod data;
 mod pattern;
+mod picture;
 
 pub use channels::{Channels, RayView};
+pub use data::{DataLookup, DataSource};
 pub use pattern::{Pattern, PatternKind};
+pub use picture::PictureLookup;
 
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -334,17 +338,23 @@ fn is_channel(_name: &str) -> bool {
     false
 }
 
-/// What a function evaluated for one primitive and ray reads: the ray channels and the
-/// primitive's real arguments.
+/// What a function evaluated for one primitive and ray reads: the ray channels, the
+/// primitive's real arguments, and (for the function a data pattern applies) the
+/// values found in its data, as channels after the ray's.
 pub struct RayInput<'a> {
     pub channels: &'a Channels,
     pub args: &'a [f64],
+    pub data: &'a [f64],
 }
 
 impl Input for RayInput<'_> {
     fn column(&mut self, n: u32) -> Result<(f64, Option<radc_lang::cal::eval::Errno>), EvalError> {
         self.channels
             .get(n)
+            .or_else(|| {
+                n.checked_sub(data::DATA_CHANNEL)
+                    .and_then(|i| self.data.get(i as usize).copied())
+            })
             .map(|v| (v, None))
             .ok_or(EvalError::IllegalChannel)
     }
