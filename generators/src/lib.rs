@@ -26,7 +26,6 @@ pub mod gensky;
 pub mod gensurf;
 pub mod genworm;
 mod mesh;
-pub mod printf;
 mod sun;
 mod wavefront;
 pub mod words;

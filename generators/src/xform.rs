@@ -13,9 +13,9 @@
 //! other command goes to the [`Host`]. With `-c` they are written back as commands
 //! piped through `xform -e` with the same transform.
 
-use crate::printf::g;
-use crate::words::{Stream, atoi, is_flt, is_int, put_word};
+use crate::words::{Stream, atoi, put_word};
 use crate::{Failure, GenError, Host};
+use radc_lang::c_number::{format_g_width as g, is_c_space, is_flt, is_int};
 use radc_lang::transform::Transform;
 use radc_lang::{FileId, Span};
 
@@ -258,7 +258,7 @@ impl Run<'_> {
         let mut input = Stream::new(text);
         let mut objects = 0;
         while let Some(c) = input.peek() {
-            if crate::words::is_c_space(c) {
+            if is_c_space(c) {
                 input.next_byte();
             } else if c == b'#' {
                 out.push_str(&input.comment());
@@ -375,7 +375,7 @@ fn argument_line_words(line: &str) -> Vec<String> {
     let mut words = Vec::new();
     let mut quote: Option<u8> = None;
     loop {
-        while b.get(cp).is_some_and(|&c| crate::words::is_c_space(c)) {
+        while b.get(cp).is_some_and(|&c| is_c_space(c)) {
             cp += 1;
         }
         if let Some(&q @ (b'"' | b'\'')) = b.get(cp) {
@@ -400,7 +400,7 @@ fn argument_line_words(line: &str) -> Vec<String> {
             }
             None => {
                 cp += 1;
-                while cp < b.len() && !crate::words::is_c_space(b[cp]) {
+                while cp < b.len() && !is_c_space(b[cp]) {
                     cp += 1;
                 }
                 cp
@@ -644,7 +644,7 @@ fn read_args(input: &mut Stream) -> Option<Args> {
         if !is_flt(&w) {
             return None;
         }
-        reals.push(crate::words::atof(&w));
+        reals.push(radc_lang::c_number::atof(&w));
     }
     Some(Args { strings, reals })
 }

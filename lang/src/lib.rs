@@ -4,6 +4,7 @@
 //! spawns a process: the CLI and the language server are the only places that touch
 //! the outside world, so both see exactly the same diagnostics.
 
+pub mod c_number;
 pub mod cal;
 pub mod datafile;
 pub mod db;

@@ -21,8 +21,9 @@ use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
-use super::ray_text::{c_exp_into, is_space, number_prefix, radiance_number, spaced_number};
+use super::ray_text::{c_exp_into, spaced_number};
 use super::report::{self, Sources};
+use radc_lang::c_number::{is_c_space, real_prefix, real_word};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
 [-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
@@ -860,13 +861,13 @@ impl<R: BufRead> RayReader<R> {
                 self.input.consume(at + 1);
                 return true;
             }
-            if is_space(b) {
+            if is_c_space(b) {
                 at += 1;
                 continue;
             }
             let word = &buf[at..];
             let number = spaced_number(word).or_else(|| {
-                number_prefix(word).filter(|&(_, n)| word.get(n).is_some_and(|&b| is_space(b)))
+                real_prefix(word).filter(|&(_, n)| word.get(n).is_some_and(|&b| is_c_space(b)))
             });
             let Some((x, n)) = number else {
                 break;
@@ -893,9 +894,13 @@ impl<R: BufRead> RayReader<R> {
             return None;
         }
         if self.line.is_ascii() {
-            for w in self.line.split(|&b| is_space(b)).filter(|w| !w.is_empty()) {
+            for w in self
+                .line
+                .split(|&b| is_c_space(b))
+                .filter(|w| !w.is_empty())
+            {
                 // rtrace stops at the first word that is not a number.
-                let Some(x) = radiance_number(w) else {
+                let Some(x) = real_word(w) else {
                     self.words.push(f64::NAN);
                     self.stop = true;
                     break;
@@ -907,7 +912,7 @@ impl<R: BufRead> RayReader<R> {
             // input.
             let line = std::str::from_utf8(&self.line).ok()?;
             for w in line.split_whitespace() {
-                let Some(x) = radiance_number(w.as_bytes()) else {
+                let Some(x) = real_word(w.as_bytes()) else {
                     self.words.push(f64::NAN);
                     self.stop = true;
                     break;

@@ -6,8 +6,8 @@
 mod columns;
 mod format;
 
-pub use columns::{Record, c_atof};
-pub use format::{format_g, format_outputs, write_g9, write_outputs};
+pub use columns::Record;
+pub use format::{format_outputs, write_outputs};
 
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{EvalError, Evaluator, Input, MathErrors, NoInput, Warning};

@@ -4,7 +4,7 @@
 //! the rest of that line) and matching starts again.
 
 use super::format::Field;
-use radc_jit::interp::c_atof;
+use radc_lang::c_number::strtod;
 use std::collections::HashMap;
 
 /// A matched record: number and string variables.
@@ -196,7 +196,7 @@ impl<'a> Matcher<'a> {
             pos += 1;
         }
         let d = match start {
-            Some(s) => c_atof(&String::from_utf8_lossy(&word[s..])).0,
+            Some(s) => strtod(&word[s..]).value,
             None => 0.0,
         };
         match m.numbers.iter().find(|(n, _)| n == name) {
