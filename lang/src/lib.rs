@@ -12,6 +12,7 @@ pub mod diagnostic;
 pub mod library;
 pub mod scene;
 pub mod schema;
+pub mod search_path;
 pub mod source;
 pub mod transform;
 

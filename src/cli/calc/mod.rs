@@ -18,10 +18,12 @@ use radc_jit::{JitProgram, RecordEngine};
 use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
+use radc_lang::schema::FileKind;
+use radc_lang::search_path::{Found, Policy, SearchPath};
 use radc_lang::{Diagnostic, FileId};
 use std::collections::HashMap;
 use std::io::{BufRead, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
 const USAGE: &str = "usage: radc calc [--interp][--threads N][-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
@@ -138,8 +140,8 @@ pub fn run(args: &[String]) -> ExitCode {
             },
             "-f" => match value() {
                 Some(name) => match find_on_raypath(&name) {
-                    Some(path) if path.is_dir() => {}
-                    Some(path) => match std::fs::read(&path) {
+                    Some(Found::File(path, ())) if path.is_dir() => {}
+                    Some(Found::File(path, ())) => match std::fs::read(&path) {
                         Ok(bytes) => {
                             let text = String::from_utf8_lossy(&bytes).into_owned();
                             add(&mut module, &mut sources, &mut diags, name, text);
@@ -151,16 +153,14 @@ pub fn run(args: &[String]) -> ExitCode {
                     },
                     // As the renderer does, radc's own library answers for a file
                     // that no RAYPATH folder holds (`-f rayinit.cal`).
-                    None => match radc_lang::library::builtin(&name) {
-                        Some(text) => {
-                            let shown = format!("{name} (built into radc)");
-                            add(&mut module, &mut sources, &mut diags, shown, text.into());
-                        }
-                        None => {
-                            eprintln!("radc calc: cannot find file '{name}' (searched RAYPATH)");
-                            return ExitCode::FAILURE;
-                        }
-                    },
+                    Some(Found::Builtin(text)) => {
+                        let shown = format!("{name} (built into radc)");
+                        add(&mut module, &mut sources, &mut diags, shown, text.into());
+                    }
+                    None => {
+                        eprintln!("radc calc: cannot find file '{name}' (searched RAYPATH)");
+                        return ExitCode::FAILURE;
+                    }
                 },
                 None => return usage("-f needs a file name"),
             },
@@ -359,19 +359,16 @@ fn usage(why: &str) -> ExitCode {
     ExitCode::from(USAGE_ERROR)
 }
 
-/// rcalc's `getpath` with `getrlibpath`: absolute and `./` names as given, others
-/// searched in each RAYPATH directory (the current one if RAYPATH is unset).
-/// A directory is found too, as `getpath` does: `-f .` then reads nothing.
-fn find_on_raypath(name: &str) -> Option<PathBuf> {
-    let p = Path::new(name);
-    if p.is_absolute() || name.starts_with("./") || name.starts_with("../") || name == "." {
-        return p.exists().then(|| p.to_path_buf());
-    }
-    let raypath = std::env::var("RAYPATH").unwrap_or_else(|_| ".".into());
-    raypath
-        .split(':')
-        .map(|d| Path::new(if d.is_empty() { "." } else { d }).join(name))
-        .find(|c| c.exists())
+/// rcalc's `getpath` with `getrlibpath` (`Policy::Getpath`), then radc's library. A
+/// directory is found too, as `getpath` does: `-f .` then reads nothing.
+fn find_on_raypath(name: &str) -> Option<Found<()>> {
+    let raypath = std::env::var_os("RAYPATH");
+    SearchPath::new(Policy::Getpath, raypath.as_deref()).lookup(
+        name,
+        FileKind::Cal,
+        None,
+        Path::exists,
+    )
 }
 
 /// Native stack the JIT's code may use on the evaluation thread (of 512 MiB).
