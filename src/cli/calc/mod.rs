@@ -11,6 +11,7 @@ mod input_format;
 mod parallel;
 
 use super::USAGE_ERROR;
+use super::report::{self, Sources};
 use format::{Field, Value};
 use radc_jit::compile::StartError;
 use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs, write_outputs};
@@ -20,7 +21,7 @@ use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
 use radc_lang::schema::FileKind;
 use radc_lang::search_path::{Found, Policy, SearchPath};
-use radc_lang::{Diagnostic, FileId};
+use radc_lang::Diagnostic;
 use std::collections::HashMap;
 use std::io::{BufRead, Write};
 use std::path::Path;
@@ -72,22 +73,13 @@ enum Passive {
     AlsoRejected,
 }
 
-/// The texts compiled so far, by `FileId`, for rendering diagnostics.
-struct Sources {
-    names: Vec<String>,
-    texts: Vec<String>,
-}
-
 pub fn run(args: &[String]) -> ExitCode {
     let mut module = Module::new(&Env {
         host: Host::Rcalc,
         fold: true,
         complete: true,
     });
-    let mut sources = Sources {
-        names: Vec::new(),
-        texts: Vec::new(),
-    };
+    let mut sources = Sources::default();
     let mut diags: Vec<Diagnostic> = Vec::new();
     let mut o = Options {
         noinput: false,
@@ -229,7 +221,7 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     o.files = args[i..].to_vec();
     if !diags.is_empty() {
-        render(&sources, &diags);
+        report::eprint(&diags, &sources);
     }
     if diags.iter().any(Diagnostic::is_error) {
         return ExitCode::FAILURE;
@@ -310,9 +302,7 @@ fn compile_format(
     for f in &fields {
         exprs.push(match f {
             Field::Number { expr, .. } => {
-                let file = FileId(sources.texts.len() as u32);
-                sources.names.push("-o".into());
-                sources.texts.push(expr.clone());
+                let file = sources.add("-o".into(), expr.clone());
                 match module.add_expression(file, expr) {
                     Ok(e) => Some(e),
                     Err(d) => {
@@ -328,10 +318,8 @@ fn compile_format(
 }
 
 fn add(m: &mut Module, s: &mut Sources, diags: &mut Vec<Diagnostic>, name: String, text: String) {
-    let file = FileId(s.texts.len() as u32);
-    diags.extend(m.add_source(file, &text));
-    s.names.push(name);
-    s.texts.push(text);
+    diags.extend(m.add_source(s.next_id(), &text));
+    s.add(name, text);
 }
 
 fn parse_format(spec: &str) -> Option<(Format, usize)> {
@@ -784,46 +772,4 @@ fn encode(bytes: &mut Vec<u8>, v: f64, f: Format) {
         word.reverse();
     }
     bytes.extend_from_slice(word);
-}
-
-fn render(sources: &Sources, diags: &[Diagnostic]) {
-    use ariadne::{Config, IndexType, Label, Report, ReportKind, Source};
-    for d in diags {
-        let file = d.span.file.0 as usize;
-        let (Some(name), Some(text)) = (sources.names.get(file), sources.texts.get(file)) else {
-            eprintln!("{}: {}", d.code.id, d.message);
-            continue;
-        };
-        let kind = if d.is_error() {
-            ReportKind::Error
-        } else {
-            ReportKind::Warning
-        };
-        let id = name.as_str();
-        let mut report = Report::build(kind, (id, d.span.range()))
-            .with_config(
-                Config::new()
-                    .with_index_type(IndexType::Byte)
-                    .with_color(false),
-            )
-            .with_code(d.code.id)
-            .with_message(&d.message)
-            .with_label(Label::new((id, d.span.range())).with_message(&d.message));
-        for l in &d.labels {
-            report = report.with_label(Label::new((id, l.span.range())).with_message(&l.message));
-        }
-        if let Some(h) = &d.hint {
-            report = report.with_help(h);
-        }
-        let mut buf = Vec::new();
-        if report
-            .finish()
-            .write((id, Source::from(text.as_str())), &mut buf)
-            .is_ok()
-        {
-            let _ = std::io::stderr().write_all(&buf);
-        } else {
-            eprintln!("{}: {}", d.code.id, d.message);
-        }
-    }
 }
