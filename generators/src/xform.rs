@@ -862,7 +862,10 @@ mod tests {
             "ring",
         ] {
             let ty = schema::lookup(name).expect(name);
-            assert!(!matches!(handler(ty), Handler::Default | Handler::AddTransform), "{name}");
+            assert!(
+                !matches!(handler(ty), Handler::Default | Handler::AddTransform),
+                "{name}"
+            );
         }
         let transformed: Vec<_> = schema::PRIMITIVE_TYPES
             .iter()

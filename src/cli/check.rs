@@ -17,13 +17,13 @@ use radc_lang::{Diagnostic, FileId, Severity};
 
 use super::USAGE_ERROR;
 use super::expand::{Commands, PendingSources};
-use super::report::{self, Format, Sources};
+use super::report::{self, ReportStyle, Sources};
 
 const USAGE: &str =
     "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
 
 struct Options {
-    format: Format,
+    format: ReportStyle,
     deny_warnings: bool,
     quiet: bool,
     allow_commands: bool,
@@ -32,7 +32,7 @@ struct Options {
 
 fn parse_args(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
-        format: Format::Human,
+        format: ReportStyle::Human,
         deny_warnings: false,
         quiet: false,
         allow_commands: false,
@@ -42,12 +42,12 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
     while let Some(a) = it.next() {
         match a.as_str() {
             "--format" => match it.next().map(String::as_str) {
-                Some("json") => o.format = Format::Json,
-                Some("human") => o.format = Format::Human,
+                Some("json") => o.format = ReportStyle::Json,
+                Some("human") => o.format = ReportStyle::Human,
                 other => return Err(format!("--format takes 'human' or 'json', not {other:?}")),
             },
-            "--format=json" => o.format = Format::Json,
-            "--format=human" => o.format = Format::Human,
+            "--format=json" => o.format = ReportStyle::Json,
+            "--format=human" => o.format = ReportStyle::Human,
             "--deny" => match it.next().map(String::as_str) {
                 Some("warnings") => o.deny_warnings = true,
                 other => return Err(format!("--deny takes 'warnings', not {other:?}")),
@@ -126,7 +126,7 @@ pub fn run(args: &[String]) -> ExitCode {
         .filter(|d| d.severity == Severity::Error)
         .count();
     let warnings = diags.len() - errors;
-    if opts.format == Format::Human && !opts.quiet {
+    if opts.format == ReportStyle::Human && !opts.quiet {
         // A closed pipe (`radc check ... | head`) is not an error worth a panic.
         let _ = writeln!(
             std::io::stdout(),

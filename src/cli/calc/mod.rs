@@ -16,12 +16,12 @@ use format::{Field, Value};
 use radc_jit::compile::StartError;
 use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs, write_outputs};
 use radc_jit::{JitProgram, RecordEngine};
+use radc_lang::Diagnostic;
 use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
 use radc_lang::schema::FileKind;
 use radc_lang::search_path::{Found, Policy, SearchPath};
-use radc_lang::Diagnostic;
 use std::collections::HashMap;
 use std::io::{BufRead, Write};
 use std::path::Path;
@@ -31,7 +31,7 @@ const USAGE: &str = "usage: radc calc [--interp][--threads N][-n][-w][-u][-tS][-
 
 /// Binary or text records (rcalc's `-id`, `-if`, `-od`, `-of`).
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Format {
+enum RecordEncoding {
     Ascii,
     Double { swap: bool },
     Float { swap: bool },
@@ -42,9 +42,9 @@ struct Options {
     nowarn: bool,
     unbuffered: bool,
     sep: char,
-    itype: Format,
+    itype: RecordEncoding,
     in_cols: usize,
-    otype: Format,
+    otype: RecordEncoding,
     in_limit: u64,
     out_limit: u64,
     files: Vec<String>,
@@ -86,9 +86,9 @@ pub fn run(args: &[String]) -> ExitCode {
         nowarn: false,
         unbuffered: false,
         sep: '\t',
-        itype: Format::Ascii,
+        itype: RecordEncoding::Ascii,
         in_cols: 0,
-        otype: Format::Ascii,
+        otype: RecordEncoding::Ascii,
         in_limit: 0,
         out_limit: 0,
         files: Vec::new(),
@@ -170,7 +170,7 @@ pub fn run(args: &[String]) -> ExitCode {
                     match compile_format(&mut module, &mut sources, &mut diags, &spec, o.ignore_eol)
                     {
                         Ok(f) => {
-                            o.otype = Format::Ascii;
+                            o.otype = RecordEncoding::Ascii;
                             o.record_format = Some(f);
                         }
                         Err(code) => return code,
@@ -186,7 +186,7 @@ pub fn run(args: &[String]) -> ExitCode {
                     })
                 }) {
                     Ok(fields) => {
-                        o.itype = Format::Ascii;
+                        o.itype = RecordEncoding::Ascii;
                         o.input_format = Some(fields);
                     }
                     Err(code) => return code,
@@ -322,7 +322,7 @@ fn add(m: &mut Module, s: &mut Sources, diags: &mut Vec<Diagnostic>, name: Strin
     s.add(name, text);
 }
 
-fn parse_format(spec: &str) -> Option<(Format, usize)> {
+fn parse_format(spec: &str) -> Option<(RecordEncoding, usize)> {
     let mut chars = spec.chars();
     let kind = chars.next()?;
     let rest: String = chars.collect();
@@ -332,11 +332,11 @@ fn parse_format(spec: &str) -> Option<(Format, usize)> {
         rest.parse().ok()?
     };
     let f = match kind {
-        'a' => Format::Ascii,
-        'd' => Format::Double { swap: false },
-        'D' => Format::Double { swap: true },
-        'f' => Format::Float { swap: false },
-        'F' => Format::Float { swap: true },
+        'a' => RecordEncoding::Ascii,
+        'd' => RecordEncoding::Double { swap: false },
+        'D' => RecordEncoding::Double { swap: true },
+        'f' => RecordEncoding::Float { swap: false },
+        'F' => RecordEncoding::Float { swap: true },
         _ => return None,
     };
     Some((f, cols))
@@ -506,7 +506,11 @@ fn run_stream<E: RecordEngine>(
     }
     let mut nrecs = 0u64;
     let mut nout = 0u64;
-    let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
+    let sep = if o.itype == RecordEncoding::Ascii {
+        o.sep
+    } else {
+        ' '
+    };
     let mut one = |line: &[u8], engine: &mut E, scratch: &mut Scratch| -> Result<bool, Stop> {
         nrecs += 1;
         let mut record = Record::from_bytes(line, sep);
@@ -521,7 +525,7 @@ fn run_stream<E: RecordEngine>(
     // where they lie.
     let mut line = Vec::with_capacity(256);
     loop {
-        if o.itype != Format::Ascii {
+        if o.itype != RecordEncoding::Ascii {
             line.clear();
             if !read_binary(input, o.itype, o.in_cols, &mut line) || !one(&line, engine, scratch)? {
                 return Ok(());
@@ -611,11 +615,16 @@ fn run_matched<E: RecordEngine>(
 
 /// Binary input records are turned into blank-separated text with full precision
 /// (into `text`), so one record reader serves both. False at the end of the input.
-fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize, text: &mut Vec<u8>) -> bool {
+fn read_binary(
+    input: &mut dyn BufRead,
+    f: RecordEncoding,
+    cols: usize,
+    text: &mut Vec<u8>,
+) -> bool {
     let (size, swap) = match f {
-        Format::Double { swap } => (8, swap),
-        Format::Float { swap } => (4, swap),
-        Format::Ascii => return false,
+        RecordEncoding::Double { swap } => (8, swap),
+        RecordEncoding::Float { swap } => (4, swap),
+        RecordEncoding::Ascii => return false,
     };
     let mut buf = [0u8; 8];
     for _ in 0..cols.max(1) {
@@ -667,7 +676,7 @@ fn produce<E: RecordEngine>(
     let Some((fields, exprs)) = &o.record_format else {
         engine.outputs_into(input, &mut scratch.columns)?;
         match o.otype {
-            Format::Ascii => write_outputs(&mut scratch.bytes, &scratch.columns, o.sep),
+            RecordEncoding::Ascii => write_outputs(&mut scratch.bytes, &scratch.columns, o.sep),
             binary => binary_record(&mut scratch.bytes, &scratch.columns, binary),
         }
         return Ok(());
@@ -743,7 +752,7 @@ fn emit<E: RecordEngine>(
 }
 
 /// rcalc.c `bchanset`: missing columns are written as zeros.
-fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: Format) {
+fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: RecordEncoding) {
     let mut col = 0u32;
     for &(n, v) in values {
         col += 1;
@@ -755,9 +764,9 @@ fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: Format) {
     }
 }
 
-fn encode(bytes: &mut Vec<u8>, v: f64, f: Format) {
+fn encode(bytes: &mut Vec<u8>, v: f64, f: RecordEncoding) {
     let (mut word, len) = match f {
-        Format::Double { .. } => (v.to_ne_bytes(), 8),
+        RecordEncoding::Double { .. } => (v.to_ne_bytes(), 8),
         _ => {
             let mut w = [0u8; 8];
             w[..4].copy_from_slice(&(v as f32).to_ne_bytes());
@@ -767,7 +776,7 @@ fn encode(bytes: &mut Vec<u8>, v: f64, f: Format) {
     let word = &mut word[..len];
     if matches!(
         f,
-        Format::Double { swap: true } | Format::Float { swap: true }
+        RecordEncoding::Double { swap: true } | RecordEncoding::Float { swap: true }
     ) {
         word.reverse();
     }
