@@ -22,7 +22,7 @@ use digits::{POW10, digit_run};
 /// `u8::is_ascii_whitespace` leaves out (the bytes `char::is_whitespace` accepts among
 /// ASCII).
 #[inline(always)]
-pub fn is_c_space(b: u8) -> bool {
+pub const fn is_c_space(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | b'\n' | b'\x0b' | b'\x0c' | b'\r')
 }
 

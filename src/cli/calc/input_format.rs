@@ -4,7 +4,7 @@
 //! the rest of that line) and matching starts again.
 
 use super::format::Field;
-use radc_lang::c_number::strtod;
+use radc_lang::c_number::{is_c_space, strtod};
 use std::collections::HashMap;
 
 /// A matched record: number and string variables.
@@ -32,7 +32,7 @@ pub struct Matcher<'a> {
 /// rcalc.c `isblnk`: space and tab, or any white space under `-l`.
 fn blank(c: u8, ignore_eol: bool) -> bool {
     if ignore_eol {
-        matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0b | 0x0c)
+        is_c_space(c)
     } else {
         c == b' ' || c == b'\t'
     }
