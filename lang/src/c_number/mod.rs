@@ -66,13 +66,18 @@ pub fn strtod(s: &[u8]) -> Strtod {
     let rest = &b[signed..];
     let starts =
         |word: &[u8]| rest.len() >= word.len() && rest[..word.len()].eq_ignore_ascii_case(word);
-    for word in [&b"infinity"[..], b"inf"] {
-        if starts(word) {
-            return Strtod::new(sign(f64::INFINITY), lead + signed + word.len());
+    // Words only start with a letter: a digit or point goes straight on (rcalc reads
+    // every column through here).
+    if rest.first().is_some_and(u8::is_ascii_alphabetic) {
+        for word in [&b"infinity"[..], b"inf"] {
+            if starts(word) {
+                return Strtod::new(sign(f64::INFINITY), lead + signed + word.len());
+            }
         }
-    }
-    if starts(b"nan") {
-        return Strtod::new(sign(f64::NAN), lead + signed + 3);
+        if starts(b"nan") {
+            return Strtod::new(sign(f64::NAN), lead + signed + 3);
+        }
+        return Strtod::new(0.0, 0);
     }
     if rest.len() > 1 && rest[0] == b'0' && (rest[1] == b'x' || rest[1] == b'X') {
         return match hex(&rest[2..]) {
