@@ -74,8 +74,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
     let body = match type_name {
         "instance" => "void instance x 1 o.oct 0 0\n".to_string(),
         "mesh" => "void mesh x 1 m.rtm 0 0\n".to_string(),
-        "brightfunc" => pattern_on_material("void brightfunc x 2 v f.cal 0 0"),
-        "colorfunc" => pattern_on_material("void colorfunc x 4 v v v f.cal 0 0"),
         "brightdata" => pattern_on_material("void brightdata x 4 f d.dat f.cal Px 0 0"),
         "colordata" => {
             pattern_on_material("void colordata x 8 f f f d.dat d.dat d.dat f.cal Px 0 0")
@@ -92,7 +90,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
         "specfunc" => pattern_on_material("void specfunc x 2 f f.cal 0 2 400 700"),
         "specdata" => pattern_on_material("void specdata x 4 f d.dat f.cal Px 0 0"),
         "specpict" => pattern_on_material("void specpict x 5 f p.hdr f.cal Px Py 0 0"),
-        "texfunc" => pattern_on_material("void texfunc x 4 v v v f.cal 0 0"),
         "texdata" => pattern_on_material("void texdata x 8 f f f d.dat d.dat d.dat f.cal Px 0 0"),
         "mixfunc" => "void plastic a 0 0 5 1 1 1 0 0\nvoid plastic b 0 0 5 0 0 0 0 0\n\
                       void mixfunc x 4 a b v f.cal 0 0\n\
@@ -256,13 +253,15 @@ fn every_type_is_rendered_against_radiance_or_refused() {
     );
 }
 
-/// A pattern wherever Radiance would apply it; the refusal shows the chain.
+/// A pattern radc does not run yet, wherever Radiance would apply it; the refusal
+/// shows the chain.
 #[test]
 fn unmodelled_modifiers_are_refused_wherever_they_sit() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_auxiliary_files(dir.path());
     let floor = |m: &str| format!("{m} polygon floor 0 0 12 -5 -5 0 5 -5 0 5 5 0 -5 5 0\n");
-    let pattern = "void brightfunc p 2 v f.cal 0 0\n";
+    // brightdata: a pattern the renderer does not run yet.
+    let pattern = "void brightdata p 4 f d.dat f.cal Px 0 0\n";
     let cases: Vec<(&str, String, &str)> = vec![
         (
             "on a material",
@@ -327,7 +326,7 @@ fn unmodelled_modifiers_are_refused_wherever_they_sit() {
         (
             "modifying a pattern on a material",
             format!(
-                "{pattern}p brightfunc q 2 v f.cal 0 0\nq plastic m 0 0 5 .5 .5 .5 0 0\n{}",
+                "{pattern}p brightdata q 4 f d.dat f.cal Px 0 0\nq plastic m 0 0 5 .5 .5 .5 0 0\n{}",
                 floor("m")
             ),
             "(used by plastic 'm', used by polygon 'floor')",
@@ -336,9 +335,9 @@ fn unmodelled_modifiers_are_refused_wherever_they_sit() {
     for (context, scene, chain) in cases {
         let v = judge(dir.path(), &format!("{LIGHT}{scene}"));
         let who = if context.starts_with("modifying a pattern") {
-            "brightfunc 'q'"
+            "brightdata 'q'"
         } else {
-            "brightfunc 'p'"
+            "brightdata 'p'"
         };
         assert_refused(&v, who, context);
         assert!(

@@ -31,6 +31,13 @@ pub const IDENTITY: Mat4 = [
 /// (so results depend on doing exactly that), and a huge count would hang.
 pub const MAX_REPEAT: i64 = 1_000_000;
 
+/// Which of xf.c's two readers of a transform: `xf` or `invxf`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Direction {
+    Forward,
+    Inverse,
+}
+
 /// A parsed transform: the matrix and its uniform scale factor (negative if mirrored).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform {
@@ -69,6 +76,32 @@ impl Transform {
     /// the transform and how many words it used. A word beginning with `-` that is not a
     /// valid option is an error, as it is for xform.
     pub fn parse_prefix(words: &[(&str, Span)]) -> Result<(Transform, usize), Diagnostic> {
+        Transform::parse_prefix_as(words, Direction::Forward)
+    }
+
+    /// The inverse of the transform `words` give, built as xf.c's `invxf` builds it
+    /// (each step inverted and multiplied on the left), not by inverting the matrix:
+    /// the renderer maps hit points into a function's coordinates with it, and the
+    /// last bits must be Radiance's. `scale` is its factor, negative if mirrored.
+    pub fn parse_inverse(words: &[(&str, Span)]) -> Result<Transform, Diagnostic> {
+        let (xf, used) = Transform::parse_prefix_as(words, Direction::Inverse)?;
+        match words.get(used) {
+            None => Ok(xf),
+            Some((w, span)) => Err(Diagnostic::new(
+                diagnostic::E0801,
+                *span,
+                format!("'{w}' is not a transform option"),
+            )
+            .with_hint(OPTIONS_HINT)),
+        }
+    }
+
+    fn parse_prefix_as(
+        words: &[(&str, Span)],
+        direction: Direction,
+    ) -> Result<(Transform, usize), Diagnostic> {
+        let inverse = direction == Direction::Inverse;
+        let sign = if inverse { -1.0 } else { 1.0 };
         let mut total = Transform::IDENTITY;
         let mut group = Transform::IDENTITY;
         let mut repeat: i64 = 1;
@@ -82,7 +115,11 @@ impl Transform {
             i += 1 + args.len();
             let step = match option {
                 Op::Translate => {
-                    let t = [real(args[0])?, real(args[1])?, real(args[2])?];
+                    let t = [
+                        sign * real(args[0])?,
+                        sign * real(args[1])?,
+                        sign * real(args[2])?,
+                    ];
                     let mut m = IDENTITY;
                     m[3][..3].copy_from_slice(&t);
                     Transform {
@@ -90,7 +127,7 @@ impl Transform {
                         scale: 1.0,
                     }
                 }
-                Op::Rotate(axis) => rotation(axis, real(args[0])?),
+                Op::Rotate(axis) => rotation(axis, sign * real(args[0])?),
                 Op::Scale => {
                     let s = real(args[0])?;
                     if s == 0.0 {
@@ -104,6 +141,7 @@ impl Transform {
                             "give a non-zero factor (a negative one also mirrors), or drop the -s",
                         ));
                     }
+                    let s = if inverse { 1.0 / s } else { s };
                     let mut m = IDENTITY;
                     for (k, row) in m.iter_mut().take(3).enumerate() {
                         row[k] = s;
@@ -122,15 +160,19 @@ impl Transform {
                     }
                 }
                 Op::Iterate => {
-                    total = total.repeated(group, repeat);
+                    total = total.repeated_as(group, repeat, direction);
                     repeat = count(args[0])?;
                     group = Transform::IDENTITY;
                     continue;
                 }
             };
-            group = group.then(&step);
+            group = match direction {
+                Direction::Forward => group.then(&step),
+                // invxf multiplies each inverted step on the left.
+                Direction::Inverse => step.then(&group),
+            };
         }
-        Ok((total.repeated(group, repeat), i))
+        Ok((total.repeated_as(group, repeat, direction), i))
     }
 
     /// `self` followed by `next` (Radiance's `multmat4(a, self, next)`).
@@ -141,9 +183,13 @@ impl Transform {
         }
     }
 
-    /// `self` followed by `n` copies of `group`, multiplied one at a time as xf.c does.
-    fn repeated(self, group: Transform, n: i64) -> Transform {
-        (0..n.max(0)).fold(self, |acc, _| acc.then(&group))
+    /// `self` followed by `n` copies of `group`, multiplied one at a time as xf.c does
+    /// (on the right for `xf`, on the left for `invxf`).
+    fn repeated_as(self, group: Transform, n: i64, direction: Direction) -> Transform {
+        (0..n.max(0)).fold(self, |acc, _| match direction {
+            Direction::Forward => acc.then(&group),
+            Direction::Inverse => group.then(&acc),
+        })
     }
 
     /// Whether the transform mirrors space (an odd number of `-m` options, or a negative

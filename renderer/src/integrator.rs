@@ -393,6 +393,7 @@ const LAMBERTIAN: Normal = Normal {
     rough: 0.0,
     metal: false,
     transmission: None,
+    texture: Vec3::ZERO,
 };
 
 /// Evaluates rays in a compiled scene.
@@ -531,8 +532,62 @@ impl<'a> Tracer<'a> {
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
     pub fn shade(&self, r: &mut RayState, material: Option<MaterialId>) {
+        if let Some(id) = material
+            && let Some(patterns) = self.scene.patterns_of(id)
+        {
+            return self.shade_patterned(r, id, patterns);
+        }
+        self.shade_with(r, material.and_then(|m| self.scene.material(m)));
+    }
+
+    /// `raytexture` before the material: the patterns give the colour (`pcol`) the
+    /// material's or light's own colour is multiplied by (normal.c, source.c
+    /// `m_light`), the textures the perturbation of its normal (`pert`), then it is
+    /// shaded with them.
+    fn shade_patterned(&self, r: &mut RayState, id: MaterialId, patterns: &[u32]) {
+        let Some(material) = self.scene.material(id) else {
+            return;
+        };
+        // normal.c's easy shadow test comes before its patterns.
+        if r.kind.any(RayKind::SHADOW)
+            && matches!(material, Material::Normal(n) if n.transmission.is_none())
+        {
+            return;
+        }
+        let Some(functions) = self.scene.functions.as_deref() else {
+            return self.shade_with(r, Some(material));
+        };
+        let view = crate::procedural::RayView {
+            dir: r.dir,
+            normal: r.normal,
+            point: r.point,
+            total_distance: r.path_length + r.length,
+            length: r.length,
+            rod: r.rod,
+            uv: [0.0, 0.0],
+        };
+        let mut pcol = Color::ONE;
+        let mut pert = Vec3::ZERO;
+        for &i in patterns {
+            if let Some(p) = functions.patterns.get(i as usize) {
+                p.apply(functions, i, &view, &mut pcol, &mut pert);
+            }
+        }
+        let mut shaded = material.clone();
+        match &mut shaded {
+            Material::Normal(n) => {
+                n.color *= pcol;
+                n.texture = pert;
+            }
+            Material::Emitter(e) => e.color *= pcol,
+            _ => {}
+        }
+        self.shade_with(r, Some(&shaded));
+    }
+
+    /// [`Tracer::shade`] with the material itself.
+    fn shade_with(&self, r: &mut RayState, material: Option<&Material>) {
         r.other_length = r.length;
-        let material = material.and_then(|m| self.scene.material(m));
         // `-i`: a primary (or passed-through) ray sees every reflecting surface as the
         // white Lambertian of `-I` (raytrace.c's `raytirrad`); lights stay lights.
         let primary = r.kind.0 & !(RayKind::PRIMARY.0 | RayKind::TRANS.0) == 0;
@@ -813,7 +868,7 @@ impl<'a> Tracer<'a> {
         let mut trans_illum = None;
         for (i, d) in self.scene.distant.iter().enumerate() {
             let i = i as u32;
-            if 2.0 * std::f64::consts::PI * (1.0 - d.direction.dot(r.dir)) > d.solid_angle {
+            if crate::lights::cap_solid_angle(d.direction.dot(r.dir)) > d.solid_angle {
                 continue;
             }
             if aimed == Some(SourceTarget::Distant(i)) {
@@ -1037,6 +1092,12 @@ impl<'a> Tracer<'a> {
         let Some(distant) = self.scene.distant.get(d as usize) else {
             return Some(None);
         };
+        if distant
+            .material
+            .is_some_and(|m| self.scene.patterns_of(m).is_some())
+        {
+            return None; // a patterned light is shaded along the ray
+        }
         let Some(Material::Emitter(e)) = distant.material.and_then(|m| self.scene.material(m))
         else {
             return None;
@@ -1069,6 +1130,12 @@ impl<'a> Tracer<'a> {
         let Some(obj) = self.scene.object(target) else {
             return Some(None);
         };
+        if obj
+            .material
+            .is_some_and(|m| self.scene.patterns_of(m).is_some())
+        {
+            return None; // a patterned light is shaded along the ray
+        }
         let Some(Material::Emitter(e)) = obj.material.and_then(|m| self.scene.material(m)) else {
             return None;
         };

@@ -9,6 +9,7 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod picture;
+pub mod procedural;
 pub mod random;
 pub mod ray;
 pub mod ray_order;
@@ -18,7 +19,6 @@ pub mod shapes;
 pub mod small_sources;
 pub mod solid_angle;
 pub mod surfaces;
-pub mod tonemap;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};

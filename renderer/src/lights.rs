@@ -206,7 +206,8 @@ impl SourceShape {
         }
     }
 
-    /// A distant source of full angle `angle_deg` degrees toward `direction`.
+    /// A distant source of full angle `angle_deg` degrees toward `direction`. Its solid
+    /// angle is `cap_solid_angle`'s, the form rtrace computes it in.
     pub fn distant(mut direction: Vec3, angle_deg: f64) -> Option<SourceShape> {
         if normalize(&mut direction) == 0.0 {
             return None;
@@ -217,7 +218,7 @@ impl SourceShape {
         }
         Some(SourceShape::Distant {
             direction,
-            solid_angle: 2.0 * std::f64::consts::PI * (1.0 - theta.cos()),
+            solid_angle: cap_solid_angle(theta.cos()),
         })
     }
 
@@ -1402,4 +1403,15 @@ mod tests {
         s.samples(Vec3::new(0.0, 0.0, 1.0), 1.0, 0.2, &mut out);
         assert!(out.is_empty());
     }
+}
+
+/// The solid angle of a cone of half-angle cosine `cos`, `2 pi (1 - cos)`, as the
+/// reference build (pyradiance's Radiance, compiled with `-ffast-math`) evaluates it
+/// in srcsupp.c and source.c: distributed, `2 pi - 2 pi cos`. The difference is one
+/// rounding, and it decides the horizon: a 180-degree `source` (every sky) then
+/// covers rays exactly along its boundary, as rtrace shows it there, where the
+/// factored form leaves a black line at the horizon of a level view.
+pub fn cap_solid_angle(cos: f64) -> f64 {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    two_pi - two_pi * cos
 }

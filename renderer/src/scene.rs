@@ -15,6 +15,7 @@ use crate::materials::mirror::Mirror;
 use crate::materials::mist::Mist;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
+use crate::procedural::{Engine, Functions, Pattern, PatternKind};
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 use crate::surfaces::Surfaces;
 
@@ -101,6 +102,14 @@ pub struct Scene {
     /// [`crate::integrator::Tracer::direct`]'s lamp path. Derived with `surfaces`.
     #[serde(skip)]
     pub lamps: Option<Vec<Lamp>>,
+    /// The patterns materials and lights are shaded with, compiled (`None`: none).
+    /// Not stored in compiled scene files, which refuse such scenes.
+    #[serde(skip)]
+    pub functions: Option<std::sync::Arc<Functions>>,
+    /// Per material, the patterns (indices into `functions`) applied before shading,
+    /// nearest modifier first; empty for most.
+    #[serde(skip)]
+    pub material_patterns: Vec<Vec<u32>>,
 }
 
 /// The most sources the lamp path of direct lighting takes (its buffers are arrays).
@@ -113,7 +122,7 @@ pub struct Unsupported {
     pub prim: PrimId,
     pub name: String,
     pub type_name: &'static str,
-    pub why: &'static str,
+    pub why: String,
     /// What uses the refused primitive (what it modifies, the alias or material naming
     /// it), nearest first, each as `type 'name'`, down to the surface (when the surface was kept): a pattern deep in a chain is
     /// only found by its users.
@@ -156,6 +165,12 @@ struct Compiler<'a> {
     /// The primitives being compiled, from the surface down to the innermost
     /// modifier: the chain a refusal shows.
     path: Vec<PrimId>,
+    functions: Functions,
+    /// Pattern index per primitive, once compiled.
+    pattern_of_prim: std::collections::HashMap<PrimId, u32>,
+    material_patterns: Vec<Vec<u32>>,
+    /// The material each surface-level pattern chain ends in, compiled with the chain.
+    surface_chains: std::collections::HashMap<PrimId, (Option<MaterialId>, String)>,
 }
 
 /// Why radc refuses a modifier of this category where it sits: the renderer does not
@@ -181,6 +196,10 @@ impl<'a> Compiler<'a> {
             material_of_prim: vec![None; ir.prims.len()],
             problems: Vec::new(),
             path: Vec::new(),
+            functions: Functions::new(),
+            pattern_of_prim: std::collections::HashMap::new(),
+            material_patterns: Vec::new(),
+            surface_chains: std::collections::HashMap::new(),
         }
     }
 
@@ -206,6 +225,11 @@ impl Scene {
     /// Compiles the surfaces of `ir` that a render needs. Everything radc does not model
     /// yet is listed, never silently dropped.
     pub fn compile(ir: &ir::Scene) -> Result<Scene, Vec<Unsupported>> {
+        Scene::compile_with(ir, Engine::Jit)
+    }
+
+    /// [`Scene::compile`], with the scene's functions run by `engine`.
+    pub fn compile_with(ir: &ir::Scene, engine: Engine) -> Result<Scene, Vec<Unsupported>> {
         let mut c = Compiler::new(ir);
         c.compile_reachable();
         if !c.problems.is_empty() {
@@ -222,6 +246,13 @@ impl Scene {
         }
         let mut scene = c.scene;
         scene.sources = sources;
+        if !c.functions.is_empty() {
+            c.functions.compile(engine);
+            scene.functions = Some(std::sync::Arc::new(c.functions));
+        }
+        c.material_patterns
+            .resize(scene.materials.len(), Vec::new());
+        scene.material_patterns = c.material_patterns;
         let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
         scene.bvh = Bvh::build(&bounds);
         scene.pack_surfaces();
@@ -251,14 +282,23 @@ impl Scene {
         });
         self.opaque_to_shadows = opaque_to_shadows;
         self.opaque_to_object_shadows = opaque_to_object_shadows;
-        self.lamps = (opaque_to_object_shadows && self.sources.len() <= MAX_LAMPS)
-            .then(|| {
-                self.sources
-                    .iter()
-                    .map(|s| Lamp::of(s, &self.objects))
-                    .collect::<Option<Vec<Lamp>>>()
-            })
-            .flatten();
+        // A patterned light's value depends on the ray: no lamp path.
+        let patterned_light = self.sources.iter().any(|s| {
+            let material = match s.target {
+                SourceTarget::Object(o) => self.object(o).and_then(|o| o.material),
+                SourceTarget::Distant(d) => self.distant.get(d as usize).and_then(|d| d.material),
+            };
+            material.is_some_and(|m| self.patterns_of(m).is_some())
+        });
+        self.lamps =
+            (opaque_to_object_shadows && !patterned_light && self.sources.len() <= MAX_LAMPS)
+                .then(|| {
+                    self.sources
+                        .iter()
+                        .map(|s| Lamp::of(s, &self.objects))
+                        .collect::<Option<Vec<Lamp>>>()
+                })
+                .flatten();
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
@@ -298,6 +338,15 @@ impl Scene {
         Ok(())
     }
 
+    /// The patterns material `id` is shaded with, if any.
+    #[inline]
+    pub fn patterns_of(&self, id: MaterialId) -> Option<&[u32]> {
+        self.material_patterns
+            .get(id.0 as usize)
+            .filter(|p| !p.is_empty())
+            .map(Vec::as_slice)
+    }
+
     pub fn material(&self, id: MaterialId) -> Option<&Material> {
         self.materials.get(id.0 as usize)
     }
@@ -330,6 +379,10 @@ impl Scene {
 
 impl Compiler<'_> {
     fn unsupported(&mut self, id: PrimId, why: &'static str) {
+        self.refuse_with(id, why.to_string());
+    }
+
+    fn refuse_with(&mut self, id: PrimId, why: String) {
         let Some(p) = self.ir.get(id) else { return };
         let chain = self
             .path
@@ -454,12 +507,123 @@ impl Compiler<'_> {
                 let name = p.name.clone();
                 (self.compile_material(id), name)
             }
-            category @ (Category::Pattern | Category::Texture | Category::Mixture) => {
+            Category::Pattern | Category::Texture => self.patterned_material(id),
+            category @ Category::Mixture => {
                 self.unsupported(id, not_modelled(category));
                 (None, String::new())
             }
             Category::Surface => (None, "void".into()),
         }
+    }
+
+    /// A surface modified by patterns or textures before its material (`rayshade`
+    /// applies each modifier until a material shades): the material compiled again
+    /// with those applied first. Its name (for `-om`) is the material's, as rtrace
+    /// reports the modifier that shades.
+    fn patterned_material(&mut self, first: PrimId) -> (Option<MaterialId>, String) {
+        if let Some(done) = self.surface_chains.get(&first) {
+            return done.clone();
+        }
+        let done = self.patterned_material_once(first);
+        self.surface_chains.insert(first, done.clone());
+        done
+    }
+
+    fn patterned_material_once(&mut self, first: PrimId) -> (Option<MaterialId>, String) {
+        let mut prefix = Vec::new();
+        let mut next = Some(first);
+        let depth = self.path.len();
+        let mut target = None;
+        while let Some(m) = next {
+            let Some(p) = self.ir.get(m) else { break };
+            if prefix.len() > self.ir.prims.len() {
+                break;
+            }
+            match p.category() {
+                Category::Pattern | Category::Texture
+                    if matches!(p.schema.name, "brightfunc" | "colorfunc" | "texfunc") =>
+                {
+                    let Some(i) = self.pattern(m) else {
+                        self.path.truncate(depth);
+                        return (None, String::new());
+                    };
+                    prefix.push((i, p.schema.name == "texfunc"));
+                    self.path.push(m);
+                    next = match p.modifier {
+                        ModRef::Prim(n) => Some(n),
+                        _ => None,
+                    };
+                }
+                Category::Material | Category::Light | Category::Alias => {
+                    target = Some(m);
+                    break;
+                }
+                category => {
+                    self.unsupported(m, not_modelled(category));
+                    self.path.truncate(depth);
+                    return (None, String::new());
+                }
+            }
+        }
+        let Some(target) = target else {
+            // Nothing shades: the ray passes, the patterns change nothing.
+            self.path.truncate(depth);
+            return (None, "void".into());
+        };
+        let name = self
+            .ir
+            .get(target)
+            .map(|p| p.name.clone())
+            .unwrap_or_default();
+        let base = self.compile_material(target);
+        self.path.truncate(depth);
+        let Some(base) = base else {
+            return (None, name);
+        };
+        let Some(material) = self.scene.material(base).cloned() else {
+            return (None, name);
+        };
+        let textures_fit = matches!(&material, Material::Normal(n) if n.transmission.is_none());
+        let patterns_fit = matches!(material, Material::Normal(_) | Material::Emitter(_));
+        if let Some(&(i, texture)) = prefix.iter().find(|(_, texture)| {
+            if *texture {
+                !textures_fit
+            } else {
+                !patterns_fit
+            }
+        }) {
+            let who = self
+                .functions
+                .patterns
+                .get(i as usize)
+                .map(|p| p.who.clone());
+            let id = self
+                .pattern_of_prim
+                .iter()
+                .find(|(_, v)| **v == i)
+                .map(|(k, _)| *k);
+            if let (Some(id), Some(_)) = (id, who) {
+                self.unsupported(
+                    id,
+                    if texture {
+                        "textures on this material type are not rendered yet"
+                    } else {
+                        "patterns on this material type are not rendered yet"
+                    },
+                );
+            }
+            return (None, name);
+        }
+        let mut patterns: Vec<u32> = prefix.iter().map(|(i, _)| *i).collect();
+        if let Some(own) = self.material_patterns.get(base.0 as usize) {
+            patterns.extend(own);
+        }
+        let mid = MaterialId(self.scene.materials.len() as u32);
+        self.scene.materials.push(material);
+        self.material_patterns
+            .resize(self.scene.materials.len(), Vec::new());
+        self.material_patterns[mid.0 as usize] = patterns;
+        (Some(mid), name)
     }
 
     fn compile_material(&mut self, id: PrimId) -> Option<MaterialId> {
@@ -477,19 +641,127 @@ impl Compiler<'_> {
         compiled
     }
 
-    /// Refuses the first modifier applied to material `id` (an alias's own, or the
-    /// target's through `inherit`), as Radiance's `raytexture` would apply it before
-    /// shading: patterns, textures and mixtures are not modelled yet. Returns whether
-    /// the material has none.
-    fn refuse_modifiers(&mut self, id: PrimId) -> bool {
-        let Some(modifier) = self.effective_modifier(id) else {
-            return true;
+    /// The patterns applied to material `id` before it is shaded (an alias's own
+    /// modifier, or the target's through `inherit`), as Radiance's `raytexture` walks
+    /// them: nearest first, each one's own modifier next. `None` (after refusing it)
+    /// where a modifier is not modelled, or `kind` does not take patterns yet.
+    fn material_modifiers(&mut self, id: PrimId, kind: PrimId) -> Option<Vec<u32>> {
+        let mut patterns = Vec::new();
+        let mut next = self.effective_modifier(id);
+        let depth = self.path.len();
+        let mut result = Some(());
+        while let Some(m) = next {
+            if patterns.len() > self.ir.prims.len() {
+                break;
+            }
+            let Some(p) = self.ir.get(m) else { break };
+            // Textures perturb the normal of plastic and metal (trans bends its
+            // transmitted ray by them too, which is not modelled yet); lights have none.
+            let texture = p.schema.name == "texfunc";
+            let takes = self.ir.get(kind).is_some_and(|k| {
+                matches!(k.kind, PrimKind::Plastic { .. } | PrimKind::Metal { .. })
+                    || (!texture && matches!(k.kind, PrimKind::Trans { .. }))
+                    || (!texture
+                        && matches!(
+                            k.kind,
+                            PrimKind::Light { .. }
+                                | PrimKind::Glow { .. }
+                                | PrimKind::Spotlight { .. }
+                        ))
+            });
+            if !matches!(p.schema.name, "brightfunc" | "colorfunc" | "texfunc") {
+                self.unsupported(m, not_modelled(p.category()));
+                result = None;
+                break;
+            }
+            if !takes {
+                self.unsupported(
+                    m,
+                    if texture {
+                        "textures on this material type are not rendered yet"
+                    } else {
+                        "patterns on this material type are not rendered yet"
+                    },
+                );
+                result = None;
+                break;
+            }
+            match self.pattern(m) {
+                Some(i) => patterns.push(i),
+                None => {
+                    result = None;
+                    break;
+                }
+            }
+            self.path.push(m);
+            next = match p.modifier {
+                ModRef::Prim(n) => Some(n),
+                _ => None,
+            };
+        }
+        self.path.truncate(depth);
+        result.map(|()| patterns)
+    }
+
+    /// Compiles pattern primitive `id` (a brightfunc or colorfunc) into the scene's
+    /// functions, once.
+    fn pattern(&mut self, id: PrimId) -> Option<u32> {
+        if let Some(&i) = self.pattern_of_prim.get(&id) {
+            return Some(i);
+        }
+        let p = self.ir.get(id)?;
+        let PrimKind::Other { strings, reals } = &p.kind else {
+            self.unsupported(id, "its arguments could not be read");
+            return None;
         };
-        let Some(m) = self.ir.get(modifier) else {
-            return true;
+        let (kind, nexprs) = match p.schema.name {
+            "brightfunc" => (PatternKind::Bright, 1),
+            "texfunc" => (PatternKind::Texture, 3),
+            _ => (PatternKind::Color, 3),
         };
-        self.unsupported(modifier, not_modelled(m.category()));
-        false
+        let (Some(exprs), Some(file)) = (strings.get(..nexprs), strings.get(nexprs)) else {
+            self.unsupported(id, "too few string arguments");
+            return None;
+        };
+        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
+            self.unsupported(id, "its function file could not be loaded");
+            return None;
+        };
+        let program = self.functions.program(file, module);
+        let mut indices = Vec::new();
+        for e in exprs {
+            match self.functions.add_expression(program, e) {
+                Ok(k) => indices.push(k),
+                Err(why) => {
+                    self.refuse_with(id, why);
+                    return None;
+                }
+            }
+        }
+        // The transform starts at the first option after the file (func.c `getfunc`).
+        let words: Vec<(&str, radc_lang::Span)> = strings[nexprs + 1..]
+            .iter()
+            .skip_while(|w| !radc_lang::schema::is_transform_option(w))
+            .map(|w| (w.as_str(), radc_lang::Span::default()))
+            .collect();
+        let Ok(mut inverse) = radc_lang::transform::Transform::parse_inverse(&words) else {
+            self.unsupported(id, "bad transform");
+            return None;
+        };
+        inverse.scale = inverse.scale.abs();
+        let index = self.functions.patterns.len() as u32;
+        self.functions.patterns.push(Pattern {
+            who: format!("{} '{}'", p.schema.name, p.name),
+            kind,
+            program,
+            exprs: indices,
+            args: reals.clone(),
+            inverse,
+            forward: (p.transform != radc_lang::transform::Transform::IDENTITY)
+                .then_some(p.transform),
+        });
+        self.pattern_of_prim.insert(id, index);
+        Some(index)
     }
 
     /// The modifier a material is shaded with: an alias's own (`mod alias new old`
@@ -508,9 +780,7 @@ impl Compiler<'_> {
 
     fn compile_material_kind(&mut self, id: PrimId) -> Option<MaterialId> {
         let kind = self.alias_target(id)?;
-        if !self.refuse_modifiers(id) {
-            return None;
-        }
+        let patterns = self.material_modifiers(id, kind)?;
         let p = self.ir.get(kind)?;
         let rgb = |c: &[f64; 3]| vec3(*c);
         let material = match &p.kind {
@@ -520,6 +790,7 @@ impl Compiler<'_> {
                 rough: *rough,
                 metal: false,
                 transmission: None,
+                texture: Vec3::ZERO,
             }),
             PrimKind::Trans {
                 color,
@@ -676,6 +947,11 @@ impl Compiler<'_> {
         };
         let mid = MaterialId(self.scene.materials.len() as u32);
         self.scene.materials.push(material);
+        if !patterns.is_empty() {
+            self.material_patterns
+                .resize(self.scene.materials.len(), Vec::new());
+            self.material_patterns[mid.0 as usize] = patterns;
+        }
         if let Some(slot) = self.material_of_prim.get_mut(id.0 as usize) {
             *slot = Some(Some(mid));
         }

@@ -86,6 +86,13 @@ fn run_parsed(args: &[String]) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
+    if scene.functions.is_some() {
+        eprintln!(
+            "radc build: the scene's patterns are compiled at render time, and a compiled \
+             scene file cannot hold them yet; trace or render the scene files instead"
+        );
+        return ExitCode::from(1);
+    }
     let bytes = match scene_file::encode(&scene) {
         Ok(b) => b,
         Err(e) => {
@@ -130,7 +137,40 @@ fn write_replacing(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 enum Kind {
     Compiled,
     Octree,
+    Picture,
     Text,
+}
+
+/// What a file is when it is a Radiance picture: "a Radiance picture (W by H, FORMAT)",
+/// read from its header and resolution line (in its first 4 KiB); `None` otherwise.
+pub(super) fn picture_description(path: &Path) -> Option<String> {
+    let mut head = [0u8; 4096];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| read_up_to(&mut f, &mut head))
+        .ok()?;
+    describe_picture(&head[..n])
+}
+
+fn describe_picture(head: &[u8]) -> Option<String> {
+    // Radiance's pictures start with the magic line; a scene that opens with comments
+    // and an empty line must not be taken for a header.
+    if !head.starts_with(b"#?") {
+        return None;
+    }
+    let (header, end) = radc_picture::Header::parse(head).ok()?;
+    let format = header.format();
+    if format
+        .as_deref()
+        .is_some_and(|f| !radc_picture::Picture::is_format(f))
+    {
+        return None;
+    }
+    let (res, _) = radc_picture::Resolution::parse(&head[end..])?;
+    let format = format.unwrap_or_else(|| radc_picture::Format::RGBE.into());
+    Some(format!(
+        "a Radiance picture ({} by {} pixels, {format})",
+        res.x, res.y
+    ))
 }
 
 fn kind(path: &Path) -> Kind {
@@ -144,6 +184,8 @@ fn kind(path: &Path) -> Kind {
         Kind::Compiled
     } else if text.starts_with("#?RADIANCE") && text.contains("FORMAT=Radiance_octree") {
         Kind::Octree
+    } else if describe_picture(head).is_some() {
+        Kind::Picture
     } else {
         Kind::Text
     }
@@ -173,6 +215,20 @@ pub(super) fn load_compiled(paths: &[PathBuf], command: &str) -> Option<Result<S
         errln!(
             "radc {command}: {}: is a Radiance octree (made by oconv), which radc does not \
              read; give the scene's .rad files, or compile them with 'radc build'",
+            p.display()
+        );
+        return Some(Err(ExitCode::from(1)));
+    }
+    if let Some(p) = paths
+        .iter()
+        .zip(&kinds)
+        .find_map(|(p, k)| matches!(k, Kind::Picture).then_some(p))
+    {
+        let what = picture_description(p).unwrap_or_else(|| "a Radiance picture".into());
+        errln!(
+            "radc {command}: {}: is {what}, not a scene; 'radc getinfo' and 'radc pvalue' \
+             read pictures, and 'radc render -o x.png {}' makes a PNG of one",
+            p.display(),
             p.display()
         );
         return Some(Err(ExitCode::from(1)));

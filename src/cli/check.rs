@@ -80,6 +80,7 @@ pub fn run(args: &[String]) -> ExitCode {
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let mut scene_files = Vec::new();
+    let mut pictures = 0;
     for path in &opts.paths {
         if path.is_dir() {
             let mut found = Vec::new();
@@ -103,6 +104,14 @@ pub fn run(args: &[String]) -> ExitCode {
             }
         } else if is_cal(path) {
             check_cal(path, &mut sources, &mut diags);
+        } else if let Some(what) = super::build::picture_description(path) {
+            // A picture read as scene text would be kilobytes of junk diagnostics.
+            eprintln!(
+                "radc check: {}: is {what}, not a scene file; 'radc getinfo' and \
+                 'radc pvalue' read pictures",
+                path.display()
+            );
+            pictures += 1;
         } else {
             scene_files.push(path.clone());
         }
@@ -121,11 +130,12 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     report::print(&diags, &sources, opts.format);
-    let errors = diags
+    let scene_errors = diags
         .iter()
         .filter(|d| d.severity == Severity::Error)
         .count();
-    let warnings = diags.len() - errors;
+    let warnings = diags.len() - scene_errors;
+    let errors = scene_errors + pictures;
     if opts.format == ReportStyle::Human && !opts.quiet {
         // A closed pipe (`radc check ... | head`) is not an error worth a panic.
         let _ = writeln!(

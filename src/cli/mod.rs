@@ -14,6 +14,7 @@ mod fmt;
 #[path = "gen.rs"]
 mod generate;
 mod lsp;
+mod picture_tools;
 mod ray_text;
 mod render;
 mod report;
@@ -106,6 +107,41 @@ const COMMANDS: &[Command] = &[
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,
+    },
+    Command {
+        name: "getinfo",
+        summary: "print the header of Radiance files, as Radiance's getinfo",
+        run: picture_tools::getinfo::run,
+    },
+    Command {
+        name: "pvalue",
+        summary: "convert picture pixels to numbers and back, as Radiance's pvalue",
+        run: picture_tools::pvalue::run,
+    },
+    Command {
+        name: "pflip",
+        summary: "flip a picture left to right or top to bottom, as Radiance's pflip",
+        run: picture_tools::pflip::run,
+    },
+    Command {
+        name: "protate",
+        summary: "turn a picture a quarter turn, as Radiance's protate",
+        run: picture_tools::protate::run,
+    },
+    Command {
+        name: "ra_ppm",
+        summary: "convert pictures to and from Poskanzer pixmaps, as Radiance's ra_ppm",
+        run: picture_tools::ra_ppm::run,
+    },
+    Command {
+        name: "ra_rgbe",
+        summary: "copy pictures with flat or run-length scanlines, as Radiance's ra_rgbe",
+        run: picture_tools::ra_rgbe::run,
+    },
+    Command {
+        name: "ra_xyze",
+        summary: "convert pictures between RGBE and XYZE, as Radiance's ra_xyze",
+        run: picture_tools::ra_xyze::run,
     },
     Command {
         name: "doc",

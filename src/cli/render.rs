@@ -1,8 +1,9 @@
 //! `radc render`: rpict for scene files. Writes a Radiance picture (RGBE, new-style RLE)
 //! to stdout or `-o file`, one ray through the centre of each pixel (rpict `-pj 0
 //! -ps 1`), with rpict's view options and the lighting options of `radc trace`.
-//! `-o x.png` writes a tone-mapped PNG (`radc_renderer::tonemap`) instead; `-o` may be
-//! given more than once. `-e file` sends messages to a file, as rpict's does. On a
+//! `-o x.png` writes a tone-mapped PNG (`radc_picture::tonemap`) instead; `-o` may be
+//! given more than once. Given a Radiance picture instead of a scene, `-o x.png` makes
+//! a PNG of that picture. `-e file` sends messages to a file, as rpict's does. On a
 //! terminal, stderr shows the progress.
 
 use std::io::{IsTerminal, Write};
@@ -12,7 +13,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use radc_renderer::camera::{Camera, View};
 use radc_renderer::math::Color;
-use radc_renderer::{Options, Target, Tracer, picture, tonemap};
+use radc_renderer::{Options, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
@@ -140,6 +141,9 @@ fn run_parsed(args: &[String]) -> ExitCode {
         );
         return ExitCode::from(USAGE_ERROR);
     }
+    if let Some(code) = picture_to_png(&a) {
+        return code;
+    }
     let camera = match a.view.camera() {
         Ok(c) => c,
         Err(e) => {
@@ -241,7 +245,52 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(1);
         }
     }
-    ExitCode::SUCCESS
+    super::trace::report_functions(&scene, "render")
+}
+
+/// `radc render -o x.png picture.hdr`: the one input is a Radiance picture and every
+/// output a PNG, so the picture itself is tone-mapped to PNG (nothing is rendered).
+/// `None` when the input is not a picture or the outputs are not all PNGs (then the
+/// scene loader explains that a picture is not a scene).
+fn picture_to_png(a: &Args) -> Option<ExitCode> {
+    let [input] = &a.scenes[..] else { return None };
+    super::build::picture_description(input)?;
+    if a.outputs.is_empty() || !a.outputs.iter().all(|p| is_png(p)) {
+        return None;
+    }
+    let picture = match std::fs::read(input)
+        .map_err(|e| e.to_string())
+        .and_then(|b| radc_picture::Picture::read(&b).map_err(|e| e.to_string()))
+    {
+        Ok(p) => p,
+        Err(e) => {
+            errln!("radc render: {}: {e}", input.display());
+            return Some(ExitCode::from(1));
+        }
+    };
+    if picture.format() == radc_picture::Format::Xyze {
+        errln!(
+            "radc render: {}: is an XYZE picture; the PNG tone map takes RGB (convert it \
+             with Radiance's 'ra_xyze -r' first)",
+            input.display()
+        );
+        return Some(ExitCode::from(1));
+    }
+    let px: Vec<Color> = picture
+        .standard_pixels()
+        .into_iter()
+        .map(|c| {
+            let [r, g, b] = radc_picture::decode(c);
+            Color::new(f64::from(r), f64::from(g), f64::from(b))
+        })
+        .collect();
+    for path in &a.outputs {
+        if let Err(e) = write_png(path, picture.width(), picture.height(), &px) {
+            errln!("radc render: cannot write {}: {e}", path.display());
+            return Some(ExitCode::from(1));
+        }
+    }
+    Some(ExitCode::SUCCESS)
 }
 
 fn is_png(path: &Path) -> bool {
@@ -249,19 +298,11 @@ fn is_png(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("png"))
 }
 
-/// An 8-bit sRGB PNG, tone-mapped with the automatic exposure (`tonemap`).
+/// An 8-bit sRGB PNG, tone-mapped with the automatic exposure (`radc_picture::tonemap`).
 fn write_png(path: &Path, w: u32, h: u32, pixels: &[Color]) -> std::io::Result<()> {
-    let exposure = tonemap::auto_exposure(pixels);
-    let data = tonemap::to_srgb8(pixels, exposure);
+    let px: Vec<[f64; 3]> = pixels.iter().map(|c| c.to_array()).collect();
     let file = std::fs::File::create(path)?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), w, h);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-    let png_error = |e: png::EncodingError| std::io::Error::other(e.to_string());
-    let mut writer = encoder.write_header().map_err(png_error)?;
-    writer.write_image_data(&data).map_err(png_error)?;
-    writer.finish().map_err(png_error)
+    radc_picture::png_out::write_png(std::io::BufWriter::new(file), w, h, &px)
 }
 
 /// A percentage on stderr (a terminal), rewritten in place until `done` says the rows

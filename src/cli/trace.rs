@@ -442,7 +442,25 @@ fn run_parsed(args: &[String]) -> ExitCode {
     if out.flush().is_err() {
         return ExitCode::from(1);
     }
-    ExitCode::SUCCESS
+    report_functions(&scene, "trace")
+}
+
+/// Prints what evaluating the scene's functions warned of (once each), as rtrace
+/// prints them; an evaluation that failed outright (Radiance stops there) makes the
+/// exit status 1.
+pub(super) fn report_functions(scene: &Scene, command: &str) -> ExitCode {
+    let Some(functions) = scene.functions.as_deref() else {
+        return ExitCode::SUCCESS;
+    };
+    let (messages, failed) = functions.take_messages();
+    for m in messages {
+        errln!("radc {command}: {m}");
+    }
+    if failed {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
 }
 
 /// What evaluating a batch of rays uses, kept from batch to batch.

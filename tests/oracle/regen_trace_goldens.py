@@ -264,6 +264,26 @@ def cases():
     case("aliases-view", "aliases.rad", ["-av", ".05", ".05", ".05"], alias_view, "-ovL")
     case("aliases-irradiance", "aliases.rad", ["-I"],
          irradiance_points(rng, 30, [-4, -4, 0], [4, 2.5, 0], [(0, 0, 1)]))
+    pat_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .8], spread=2.5)
+    pat_view += box_rays(rng, 20, [-1, -1, 1.5], [1, 1, 2.5], toward=[0, 0, 8], spread=3)
+    pat_view += box_rays(rng, 30, [0, -2, 1], [2, 0, 2], toward=[1.5, 1.5, .8], spread=.6)
+    case("patterns-view", "patterns.rad", ["-av", ".05", ".05", ".05"], pat_view, "-ovL")
+    case("patterns-irradiance", "patterns.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    tex_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .5], spread=2.5)
+    tex_view += box_rays(rng, 30, [-2.5, -2, .5], [-.5, -1, 1.5], toward=[-1.5, 0, 1], spread=.6)
+    tex_view += box_rays(rng, 20, [-2, 0, 1], [2, 2, 2], toward=[0, 3, 2], spread=1)
+    tex_view += box_rays(rng, 40, [1, -4, 1], [3, -3, 2], toward=[2, -1.2, .3], spread=.5)
+    tex_view += box_rays(rng, 30, [0, -3, .8], [2, -2.5, 1.6], toward=[1.2, -1, 1.15], spread=.3)
+    case("textures-view", "textures.rad", ["-av", ".05", ".05", ".05"], tex_view, "-ovL")
+    case("textures-irradiance", "textures.rad", ["-I"],
+         irradiance_points(rng, 30, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    day_view = box_rays(rng, 40, [1, 1, 1], [3, 4, 2], toward=[2, 0, 1.75], spread=.8)
+    day_view += [[x, 3.0, z, dx, -1.0, 0.0]
+                 for x, z, dx in ((1.5, 1.2, 0), (2, 1.5, .1), (2.5, 2, -.2), (2, 2.4, .05))]
+    case("daylight-view", "daylight.rad", ["-av", ".05", ".05", ".05"], day_view, "-ovL")
+    case("daylight-irradiance", "daylight.rad", ["-I"],
+         irradiance_points(rng, 30, [.2, .2, .8], [3.8, 4.8, .8], [(0, 0, 1)]))
     return out
 
 
@@ -281,6 +301,7 @@ def run_case(c, workdir):
         capture_output=True,
         text=True,
         check=True,
+        cwd=SCENES,  # function files (patterns.cal) are found beside the scenes
     )
     return p.stdout
 

@@ -160,6 +160,13 @@ impl<'m> State<'m> {
             ("radc_depth", sig(&[ptr, types::I32, types::I64], None)),
             ("radc_chan", sig(&[ptr, types::I32], Some(types::F64))),
             ("radc_in", sig(&[ptr, types::F64], Some(types::F64))),
+            (
+                "radc_renderer_fn",
+                sig(
+                    &[ptr, types::I32, types::F64, types::F64, types::F64],
+                    Some(types::F64),
+                ),
+            ),
             ("radc_fnval", sig(&[ptr, ptr, types::I64], Some(types::F64))),
             ("radc_chan_thunk", sig_thunk.clone()),
         ];

@@ -30,6 +30,7 @@ pub fn symbols() -> Vec<(&'static str, *const u8)> {
         ("radc_depth", h_depth as *const u8),
         ("radc_chan", h_chan as *const u8),
         ("radc_in", h_in as *const u8),
+        ("radc_renderer_fn", h_renderer_fn as *const u8),
         ("radc_fnval", h_fnval as *const u8),
         ("radc_chan_thunk", h_chan_thunk as *const u8),
     ]
@@ -239,6 +240,40 @@ extern "C" fn h_in(raw: *mut Raw, x: f64) -> f64 {
     }
 }
 
+/// A renderer library function (`arg`, `noise3`, ...) with its arguments evaluated:
+/// the input (the renderer's ray) answers it.
+fn renderer_fn(raw: &mut Raw, name: &'static str, args: &[f64]) -> f64 {
+    if raw.input.is_null() {
+        raw.fail(EvalError::NotAvailable(name.to_string()));
+        return 0.0;
+    }
+    // SAFETY: as in `channel`.
+    let input = unsafe { &mut *(raw.input as *mut &mut dyn Input) };
+    match input.renderer_function(name, args) {
+        Ok(v) => v,
+        Err(e) => {
+            raw.fail(e);
+            0.0
+        }
+    }
+}
+
+/// A direct call of renderer function `sym` (its first `arity` arguments used).
+extern "C" fn h_renderer_fn(raw: *mut Raw, sym: u32, a: f64, b: f64, c: f64) -> f64 {
+    let raw = raw_mut(raw);
+    match raw.tables.libs.get(sym as usize).copied().flatten() {
+        Some(LibFn::Renderer(r)) => {
+            let args = [a, b, c];
+            renderer_fn(raw, r.name, &args[..r.arity.min(3)])
+        }
+        _ => {
+            let name = raw.name(sym);
+            raw.fail(EvalError::UndefinedFunction(name));
+            0.0
+        }
+    }
+}
+
 /// A call through a function value the generated code does not call directly: a
 /// library function passed by name, or an error deferred to the moment of the call.
 extern "C" fn h_fnval(raw: *mut Raw, block: *mut Block, code: u64) -> f64 {
@@ -316,8 +351,19 @@ fn lib_call(raw: &mut Raw, block: *mut Block, sym: u32) -> f64 {
         Some(LibFn::Builtin(b)) => builtin(raw, block, sym, b),
         Some(LibFn::In) => block_arg(raw, block, 1, sym).map(|x| h_in(raw as *mut Raw, x)),
         Some(LibFn::Renderer(r)) => {
-            raw.fail(EvalError::NotAvailable(r.name.to_string()));
-            None
+            let mut args = [0.0; 3];
+            let n = r.arity.min(args.len());
+            let mut ok = true;
+            for (i, slot) in args.iter_mut().enumerate().take(n) {
+                match block_arg(raw, block, i as u64 + 1, sym) {
+                    Some(v) => *slot = v,
+                    None => {
+                        ok = false;
+                        break;
+                    }
+                }
+            }
+            ok.then(|| renderer_fn(raw, r.name, &args[..n]))
         }
         None => {
             let name = raw.name(sym);

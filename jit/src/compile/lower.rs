@@ -1298,9 +1298,21 @@ impl<'a, 'b, 'm> Lower<'a, 'b, 'm> {
                 self.check_failed();
                 self.lib_result(d, s.0)
             }
-            Some(LibFn::Renderer(_)) => {
+            Some(LibFn::Renderer(r)) => {
                 self.lib_enter(s.0);
-                self.fail(E_NOT_AVAILABLE, s.0)
+                self.set_errno(ERRNO_NONE);
+                let zero = self.b.ins().f64const(0.0);
+                let mut vals = [zero; 3];
+                for (i, v) in vals.iter_mut().enumerate().take(r.arity.min(3)) {
+                    *v = self.lib_arg(args, i, s.0)?;
+                }
+                let sym = self.b.ins().iconst(types::I32, i64::from(s.0));
+                let d = self.call_import_f64(
+                    "radc_renderer_fn",
+                    &[self.raw, sym, vals[0], vals[1], vals[2]],
+                );
+                self.check_failed();
+                self.lib_result(d, s.0)
             }
             None => {
                 self.lib_enter(s.0);

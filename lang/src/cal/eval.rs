@@ -22,6 +22,11 @@ pub trait Input {
     fn column(&mut self, n: u32) -> Result<(f64, Option<Errno>), EvalError>;
     /// `in(0)`: the number of columns in the current record.
     fn column_count(&mut self) -> Result<f64, EvalError>;
+    /// A function the renderer adds to the library (`arg`, `noise3`, ...: func.c
+    /// `funset`), with its arguments evaluated in order. Only the renderer has them.
+    fn renderer_function(&mut self, name: &'static str, _args: &[f64]) -> Result<f64, EvalError> {
+        Err(EvalError::NotAvailable(name.to_string()))
+    }
 }
 
 /// No input at all: evaluating while parsing, or `rcalc -n`.
@@ -499,7 +504,15 @@ impl<'m> Evaluator<'m> {
                     input.column_count()?
                 }
             }
-            LibFn::Renderer(r) => return Err(EvalError::NotAvailable(r.name.to_string())),
+            LibFn::Renderer(r) => {
+                // func.c's functions read their arguments in order with `argument(n)`.
+                let mut args = [0.0; 3];
+                let n = r.arity.min(args.len());
+                for (i, slot) in args.iter_mut().enumerate().take(n) {
+                    *slot = self.argument(Some(act), i as u32 + 1, input)?;
+                }
+                input.renderer_function(r.name, &args[..n])?
+            }
         };
         self.check_nonfinite(d);
         match self.errno {

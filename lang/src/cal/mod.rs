@@ -28,6 +28,7 @@ pub mod fold;
 pub mod ir;
 pub mod lexer;
 pub mod parser;
+pub mod renderer_math;
 pub mod resolve;
 pub mod syntax;
 

@@ -180,6 +180,23 @@ pub struct Scene {
     /// to: with the kept surfaces, the roots of reachability. Empty when every surface
     /// was kept.
     pub roots: Vec<PrimId>,
+    /// The function files the primitives name, as the renderer loads them (after
+    /// rayinit.cal, in the file's context), by name as written (`.` for none); only
+    /// files that loaded without errors.
+    pub functions: FunctionModules,
+}
+
+/// Loaded function files by name. Compared by name only: a module is a function of
+/// its file's text, which the scene's other fields already pin down.
+#[derive(Clone, Debug, Default)]
+pub struct FunctionModules(
+    pub std::collections::BTreeMap<String, std::sync::Arc<crate::cal::Module>>,
+);
+
+impl PartialEq for FunctionModules {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.keys().eq(other.0.keys())
+    }
 }
 
 impl Scene {

@@ -179,6 +179,14 @@ impl<'a> Lowering<'a> {
         self.settle_deferred();
         self.report_unused();
         self.scene.roots = std::mem::take(&mut self.roots);
+        for (name, file) in std::mem::take(&mut self.function_files) {
+            if let Some(f) = file.filter(|f| f.errors.is_empty()) {
+                self.scene
+                    .functions
+                    .0
+                    .insert(name, std::sync::Arc::new(f.module));
+            }
+        }
         (self.scene, self.diags)
     }
 }

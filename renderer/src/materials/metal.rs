@@ -1,7 +1,7 @@
 //! `metal`: the normal.c model with the highlight tinted by the material colour.
 
 use super::plastic::Normal;
-use crate::math::Color;
+use crate::math::{Color, Vec3};
 
 /// A metal: `spec` of the reflection is specular, coloured by `color`.
 pub fn metal(color: Color, spec: f64, rough: f64) -> Normal {
@@ -11,6 +11,7 @@ pub fn metal(color: Color, spec: f64, rough: f64) -> Normal {
         rough,
         metal: true,
         transmission: None,
+        texture: Vec3::ZERO,
     }
 }
 

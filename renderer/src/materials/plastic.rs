@@ -11,6 +11,25 @@ use crate::math::{Color, FTINY, Vec3, normalize, perpendicular};
 use crate::random::uniform;
 use std::f64::consts::PI;
 
+/// raytrace.c's `raynormal`: the surface normal plus a texture's perturbation, turned
+/// back to the ray's side of the surface if the perturbation crossed it, and its
+/// cosine with the ray.
+pub fn perturbed_normal(r: &RayState, pert: Vec3) -> (Vec3, f64) {
+    if pert.dot(pert) <= FTINY * FTINY {
+        return (r.normal, r.rod);
+    }
+    let mut norm = r.normal + pert;
+    if normalize(&mut norm) == 0.0 {
+        return (r.normal, r.rod);
+    }
+    let mut newdot = -norm.dot(r.dir);
+    if (newdot > 0.0) != (r.rod > 0.0) {
+        norm += r.dir * (2.0 * newdot);
+        newdot = -newdot;
+    }
+    (norm, newdot)
+}
+
 /// Fresnel estimate at cosine `ci` (normal.c's `FRESNE`).
 fn fresnel(ci: f64) -> f64 {
     (-5.85 * ci).exp() - 0.00202943064
@@ -27,6 +46,11 @@ pub struct Normal {
     /// `trans` only: the transmitted fraction of what is not reflected specularly, and
     /// the specular fraction of that.
     pub transmission: Option<(f64, f64)>,
+    /// The normal's perturbation at the hit being shaded (`r->pert`), which textures
+    /// set on a per-hit copy of the material (`Tracer::shade_patterned`); zero in the
+    /// scene's own materials.
+    #[serde(skip)]
+    pub texture: Vec3,
 }
 
 /// What a hit on a normal material works out once, for the ambient, specular and
@@ -62,14 +86,16 @@ impl Normal {
         if shadow && self.transmission.is_none() {
             return; // opaque to shadow rays
         }
+        let mut flipped = false;
         if r.rod < 0.0 {
             if !t.options().backface_visible {
                 t.transmit(r);
                 return;
             }
             r.flip();
+            flipped = true;
         }
-        let s = self.setup(t, r);
+        let s = self.setup(t, r, flipped);
         if s.tspec > FTINY && s.pure {
             self.straight_ray(t, r, &s);
         }
@@ -109,10 +135,13 @@ impl Normal {
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
 
-    fn setup(&self, t: &Tracer<'_>, r: &RayState) -> Shading {
+    fn setup(&self, t: &Tracer<'_>, r: &RayState, flipped: bool) -> Shading {
         let alpha2 = self.rough * self.rough;
         let pure = alpha2 <= FTINY;
-        let pdot = r.rod.max(0.001);
+        // `flipsurface` turns the perturbation with the normal.
+        let pert = if flipped { -self.texture } else { self.texture };
+        let (normal, pdot) = perturbed_normal(r, pert);
+        let pdot = pdot.max(0.001);
         let mut rspec = self.spec;
         let mut fest = 0.0;
         if pure && rspec >= FRESNEL_THRESHOLD {
@@ -134,7 +163,7 @@ impl Normal {
         Shading {
             color: self.color,
             specular,
-            normal: r.normal,
+            normal,
             pdot,
             alpha2,
             rdiff: 1.0 - trans - rspec,
@@ -145,7 +174,8 @@ impl Normal {
             pure,
             has_highlight: rspec > FTINY && !pure,
             has_rough_transmission: tspec > FTINY && !pure,
-            flat: r.hit_is_flat(t.scene()),
+            // normal.c: a textured surface is not treated as flat.
+            flat: pert.dot(pert) <= FTINY * FTINY && r.hit_is_flat(t.scene()),
             ray_dir: r.dir,
         }
     }
@@ -174,6 +204,11 @@ impl Normal {
             return;
         };
         child.dir = r.dir + s.normal * (2.0 * s.pdot);
+        // A texture may tip the reflection under the surface: normal.c reflects off
+        // the unperturbed normal then.
+        if s.normal != r.normal && child.dir.dot(r.normal) <= FTINY {
+            child.dir = r.dir + r.normal * (2.0 * r.rod);
+        }
         normalize(&mut child.dir);
         t.trace(&mut child);
         let c = child.color * child.coef;

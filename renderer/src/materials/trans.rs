@@ -2,7 +2,7 @@
 //! specularly (`trans` and `tspec` of the arguments).
 
 use super::plastic::Normal;
-use crate::math::Color;
+use crate::math::{Color, Vec3};
 
 pub fn trans(color: Color, spec: f64, rough: f64, trans: f64, tspec: f64) -> Normal {
     Normal {
@@ -11,5 +11,6 @@ pub fn trans(color: Color, spec: f64, rough: f64, trans: f64, tspec: f64) -> Nor
         rough,
         metal: false,
         transmission: Some((trans, tspec)),
+        texture: Vec3::ZERO,
     }
 }

@@ -5,19 +5,23 @@
 //! Exposure: chosen so the mean brightness (`pbright`, the luminance weights of
 //! Radiance's primaries) of the picture's non-black pixels maps to 0.5, the idea of
 //! pfilt's automatic exposure; black pixels (a sky that is not modelled, the outside of
-//! a fisheye's circle) are left out so they do not overexpose the rest. Each channel is multiplied by it, clamped to [0, 1] and encoded
-//! with the sRGB curve (IEC 61966-2-1: linear below 0.0031308, else `1.055 v^(1/2.4) -
-//! 0.055`), then rounded to 8 bits. Radiance's primaries are close enough to sRGB's that
-//! no colour matrix is applied.
+//! a fisheye's circle) are left out so they do not overexpose the rest. Each channel is
+//! multiplied by it, clamped to [0, 1] and encoded with the sRGB curve (IEC 61966-2-1:
+//! linear below 0.0031308, else `1.055 v^(1/2.4) - 0.055`), then rounded to 8 bits.
+//! Radiance's primaries are close enough to sRGB's that no colour matrix is applied.
 
-use crate::math::{Color, brightness};
+/// The brightness weights as `color.h`'s comment rounds them: the PNGs radc has always
+/// written use these, so they stay.
+fn brightness(c: [f64; 3]) -> f64 {
+    0.265074126 * c[0] + 0.670114631 * c[1] + 0.064811243 * c[2]
+}
 
 /// The exposure that maps the mean brightness of the non-black `pixels` to 0.5 (1 for
 /// a black or empty picture). Non-finite pixels are left out.
-pub fn auto_exposure(pixels: &[Color]) -> f64 {
+pub fn auto_exposure(pixels: &[[f64; 3]]) -> f64 {
     let (sum, n) = pixels
         .iter()
-        .map(|c| brightness(c.max(Color::ZERO)))
+        .map(|c| brightness(c.map(|v| v.max(0.0))))
         .filter(|b| b.is_finite() && *b > 0.0)
         .fold((0.0, 0usize), |(s, n), b| (s + b, n + 1));
     let mean = if n > 0 { sum / n as f64 } else { 0.0 };
@@ -37,13 +41,10 @@ pub fn srgb8(v: f64) -> u8 {
 }
 
 /// `pixels` as 8-bit RGB triples, in the same order.
-pub fn to_srgb8(pixels: &[Color], exposure: f64) -> Vec<u8> {
+pub fn to_srgb8(pixels: &[[f64; 3]], exposure: f64) -> Vec<u8> {
     pixels
         .iter()
-        .flat_map(|c| {
-            let c = *c * exposure;
-            [srgb8(c.x), srgb8(c.y), srgb8(c.z)]
-        })
+        .flat_map(|c| c.map(|v| srgb8(v * exposure)))
         .collect()
 }
 
@@ -66,10 +67,10 @@ mod tests {
 
     #[test]
     fn auto_exposure_maps_the_mean_to_half() {
-        let px = vec![Color::splat(2.0), Color::ZERO, Color::splat(6.0)];
+        let px = vec![[2.0; 3], [0.0; 3], [6.0; 3]];
         let e = auto_exposure(&px);
         assert!((e - 0.125).abs() < 1e-9, "{e}");
-        assert_eq!(auto_exposure(&[Color::ZERO]), 1.0);
+        assert_eq!(auto_exposure(&[[0.0; 3]]), 1.0);
         assert_eq!(auto_exposure(&[]), 1.0);
         assert_eq!(to_srgb8(&px, e).len(), 9);
     }

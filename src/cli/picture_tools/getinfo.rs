@@ -1,0 +1,275 @@
+//! `radc getinfo`: Radiance's getinfo. Prints the information header of each file
+//! (`file:` then each line after a tab), `-d` the resolution line instead (`+d` both),
+//! `-` copies standard input without its header (`-d -`: without its resolution line
+//! too), `-a line...` adds lines to the header of standard input, `-c command...` runs a
+//! command on the data after the header and writes the header with the command added.
+//! Works on any Radiance file (pictures, octrees, matrices), as getinfo does.
+
+use std::io::{BufRead, Read, Write};
+use std::process::{ExitCode, Stdio};
+
+use radc_picture::{Header, HeaderLine, Resolution};
+
+use super::{FAILURE, fail, format_line, read_input, stdout_position, words_line, write_stdout};
+
+const NAME: &str = "getinfo";
+
+pub fn run(args: &[String]) -> ExitCode {
+    // A first argument of -d or +d (getinfo looks at its first two characters only).
+    let (dim, args) = match args.first().map(String::as_bytes) {
+        Some([s @ (b'-' | b'+'), b'd', ..]) => (if *s == b'-' { -1 } else { 1 }, &args[1..]),
+        _ => (0, args),
+    };
+    match args.first().map(String::as_str) {
+        Some("-c") if args.len() > 1 => run_command(dim, &args[1..]),
+        Some("-a") if args.len() > 1 => add_lines(&args[1..]),
+        Some("-r") if args.len() > 1 => fail(
+            NAME,
+            "-r (removing header lines) is not supported by radc getinfo",
+        ),
+        Some("-") if args.len() == 1 => strip_header(dim),
+        None => standard_input(dim),
+        Some(_) => files(dim, args),
+    }
+}
+
+/// What getinfo prints for the data after a header (`getdim`): a picture's resolution
+/// line, an octree's boundaries, or "unknown file type".
+fn dimensions(data: &[u8], out: &mut Vec<u8>) {
+    match data.first() {
+        Some(b'+' | b'-') => {
+            let end = data
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(data.len(), |n| n + 1);
+            out.extend_from_slice(&data[..end]);
+        }
+        Some(1) => {
+            // An octree: a format byte, then the cube's origin and size as strings.
+            let mut zeros = 0;
+            for &c in data.iter().skip(2) {
+                if c == 0 {
+                    zeros += 1;
+                    if zeros >= 4 {
+                        break;
+                    }
+                    out.push(b' ');
+                } else {
+                    out.push(c);
+                }
+            }
+            out.push(b'\n');
+        }
+        _ => out.extend_from_slice(b"unknown file type\n"),
+    }
+}
+
+fn files(dim: i32, names: &[String]) -> ExitCode {
+    let mut out = Vec::new();
+    for name in names {
+        out.extend_from_slice(name.as_bytes());
+        let Ok(data) = std::fs::read(name) else {
+            out.extend_from_slice(b": cannot open\n");
+            continue;
+        };
+        let (lines, end) = Header::parse_partial(&data);
+        if dim < 0 {
+            match end {
+                Ok(end) => {
+                    out.extend_from_slice(b": ");
+                    dimensions(&data[end..], &mut out);
+                }
+                Err(_) => out.extend_from_slice(b": bad header!\n"),
+            }
+            continue;
+        }
+        out.extend_from_slice(b":\n\t");
+        for line in &lines {
+            out.extend_from_slice(&line.0);
+            if line.0.ends_with(b"\n") {
+                out.push(b'\t');
+            }
+        }
+        let end = match end {
+            Ok(end) => end,
+            Err(e) => {
+                let _ = write_stdout(NAME, &out);
+                eprintln!("{name}: bad header! ({e})");
+                return ExitCode::from(FAILURE);
+            }
+        };
+        out.push(b'\n');
+        if dim > 0 {
+            out.push(b'\t');
+            dimensions(&data[end..], &mut out);
+        }
+    }
+    match write_stdout(NAME, &out) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(code) => code,
+    }
+}
+
+/// No file names: the header of standard input, as is.
+fn standard_input(dim: i32) -> ExitCode {
+    let data = match read_input(None) {
+        Ok(d) => d,
+        Err(e) => return fail(NAME, e),
+    };
+    let (lines, end) = Header::parse_partial(&data);
+    let mut out = Vec::new();
+    if dim >= 0 {
+        lines.iter().for_each(|l| out.extend_from_slice(&l.0));
+    }
+    let end = match end {
+        Ok(end) => end,
+        Err(e) => {
+            let _ = write_stdout(NAME, &out);
+            return fail(NAME, format!("bad header on standard input: {e}"));
+        }
+    };
+    if dim >= 0 {
+        out.push(b'\n');
+    }
+    if dim != 0 {
+        dimensions(&data[end..], &mut out);
+    }
+    match write_stdout(NAME, &out) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(code) => code,
+    }
+}
+
+/// `getinfo -`: standard input after its header (and after its resolution line, `-d`).
+fn strip_header(dim: i32) -> ExitCode {
+    let data = match read_input(None) {
+        Ok(d) => d,
+        Err(e) => return fail(NAME, e),
+    };
+    let mut at = match Header::parse(&data) {
+        Ok((_, end)) => end,
+        Err(e) => return fail(NAME, format!("bad header on standard input: {e}")),
+    };
+    if dim < 0 {
+        match Resolution::parse(&data[at..]) {
+            Some((_, n)) => at += n,
+            None => return fail(NAME, "no resolution string on standard input"),
+        }
+    }
+    match write_stdout(NAME, &data[at..]) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(code) => code,
+    }
+}
+
+/// The header lines `checkheader` copies (all but `FORMAT=`) and the format found.
+fn header_without_format(lines: &[HeaderLine]) -> (Vec<u8>, Option<String>) {
+    let mut out = Vec::new();
+    let mut format = None;
+    for l in lines {
+        match l.format() {
+            Some(f) => format = Some(f),
+            None => out.extend_from_slice(&l.0),
+        }
+    }
+    (out, format)
+}
+
+/// `getinfo -a line...`: the header of standard input with the lines added before its
+/// format line, then the rest of the input.
+fn add_lines(lines: &[String]) -> ExitCode {
+    let data = match read_input(None) {
+        Ok(d) => d,
+        Err(e) => return fail(NAME, e),
+    };
+    let (header, end) = match Header::parse(&data) {
+        Ok(h) => h,
+        Err(e) => return fail(NAME, format!("bad header on standard input: {e}")),
+    };
+    let (mut out, format) = header_without_format(&header.lines);
+    for l in lines.iter().filter(|l| !l.is_empty()) {
+        out.extend_from_slice(l.as_bytes());
+        if !l.ends_with('\n') {
+            out.push(b'\n');
+        }
+    }
+    if let Some(f) = format {
+        out.extend_from_slice(format_line(&f, stdout_position(), out.len()).as_bytes());
+    }
+    out.push(b'\n');
+    out.extend_from_slice(&data[end..]);
+    match write_stdout(NAME, &out) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(code) => code,
+    }
+}
+
+/// `getinfo -c command...`: the header of standard input with the command line added,
+/// then what the command writes given the rest of the input (`-d`: without the
+/// resolution line; `+d`: the line is passed on, normalized). The exit status is the
+/// command's. The command runs directly (no shell), as getinfo's `execvp`.
+fn run_command(dim: i32, command: &[String]) -> ExitCode {
+    let stdin = std::io::stdin();
+    let mut input = stdin.lock();
+    let mut head = Vec::new();
+    // Read line by line up to the empty line, so the rest goes to the command untouched.
+    loop {
+        let mut line = Vec::new();
+        match input.read_until(b'\n', &mut line) {
+            Ok(0) | Err(_) => return fail(NAME, "bad header on standard input"),
+            Ok(_) => {}
+        }
+        let end = line == b"\n" || line == b"\r\n";
+        head.extend_from_slice(&line);
+        if end {
+            break;
+        }
+        if head.len() == line.len() && !line.first().is_some_and(|c| (0x20..0x7f).contains(c)) {
+            return fail(NAME, "bad header on standard input");
+        }
+    }
+    let header = match Header::parse(&head) {
+        Ok((h, _)) => h,
+        Err(e) => return fail(NAME, format!("bad header on standard input: {e}")),
+    };
+    let (mut out, format) = header_without_format(&header.lines);
+    out.extend_from_slice(words_line(command).as_bytes());
+    if let Some(f) = format {
+        out.extend_from_slice(format_line(&f, stdout_position(), out.len()).as_bytes());
+    }
+    out.push(b'\n');
+    let mut first = Vec::new();
+    if dim != 0 {
+        let mut line = Vec::new();
+        let _ = input.by_ref().take(31).read_until(b'\n', &mut line);
+        let Some((res, _)) = Resolution::parse(&line) else {
+            return fail(NAME, "no resolution string on standard input");
+        };
+        if dim > 0 {
+            out.extend_from_slice(res.line().as_bytes());
+        }
+    }
+    if let Err(code) = write_stdout(NAME, &out) {
+        return code;
+    }
+    first.extend_from_slice(input.fill_buf().unwrap_or(&[]));
+    let mut child = match std::process::Command::new(&command[0])
+        .args(&command[1..])
+        .stdin(Stdio::piped())
+        .spawn()
+    {
+        Ok(c) => c,
+        Err(e) => return fail(NAME, format!("{}: {e}", command[0])),
+    };
+    if let Some(mut to) = child.stdin.take() {
+        // What is already buffered, then the rest of standard input.
+        let n = first.len();
+        let _ = to.write_all(&first);
+        input.consume(n);
+        let _ = std::io::copy(&mut input, &mut to);
+    }
+    match child.wait() {
+        Ok(status) => ExitCode::from(status.code().unwrap_or(FAILURE as i32) as u8),
+        Err(e) => fail(NAME, format!("{}: {e}", command[0])),
+    }
+}
