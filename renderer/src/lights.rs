@@ -1243,6 +1243,17 @@ fn split_flat(
     split_flat(out, org, upper, mp / 2, center + half, uv, duv);
 }
 
+/// The solid angle of a cone of half-angle cosine `cos`, `2 pi (1 - cos)`, as the
+/// reference build (pyradiance's Radiance, compiled with `-ffast-math`) evaluates it
+/// in srcsupp.c and source.c: distributed, `2 pi - 2 pi cos`. The difference is one
+/// rounding, and it decides the horizon: a 180-degree `source` (every sky) then
+/// covers rays exactly along its boundary, as rtrace shows it there, where the
+/// factored form leaves a black line at the horizon of a level view.
+pub fn cap_solid_angle(cos: f64) -> f64 {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    two_pi - two_pi * cos
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1403,15 +1414,4 @@ mod tests {
         s.samples(Vec3::new(0.0, 0.0, 1.0), 1.0, 0.2, &mut out);
         assert!(out.is_empty());
     }
-}
-
-/// The solid angle of a cone of half-angle cosine `cos`, `2 pi (1 - cos)`, as the
-/// reference build (pyradiance's Radiance, compiled with `-ffast-math`) evaluates it
-/// in srcsupp.c and source.c: distributed, `2 pi - 2 pi cos`. The difference is one
-/// rounding, and it decides the horizon: a 180-degree `source` (every sky) then
-/// covers rays exactly along its boundary, as rtrace shows it there, where the
-/// factored form leaves a black line at the horizon of a level view.
-pub fn cap_solid_angle(cos: f64) -> f64 {
-    let two_pi = 2.0 * std::f64::consts::PI;
-    two_pi - two_pi * cos
 }
