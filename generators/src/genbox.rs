@@ -9,9 +9,9 @@
 //! Phong smoothing) and `wavefront.rs` (`-o`).
 
 use crate::mesh::{Corner, Mesh, cross, normalize, sub};
-use crate::printf::g;
-use crate::words::{atof, atoi};
+use crate::words::atoi;
 use crate::{GenError, command_comment};
+use radc_lang::c_number::{atof, format_g_width as g};
 
 const USAGE: &str =
     "genbox material name xsize ysize zsize [-i] [-b bevel | -r round [-n nsegs][-s]] [-o]";

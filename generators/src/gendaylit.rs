@@ -19,8 +19,9 @@
 //! after the command line it has already printed.
 
 use crate::sun::{Site, declination, julian_day};
-use crate::words::{atof, atoi};
+use crate::words::atoi;
 use crate::{Failure, GenError};
+use radc_lang::c_number::atof;
 use std::f64::consts::PI;
 
 /// gendaylit's name for itself in messages (its `argv[0]`, as run from PATH).
@@ -280,12 +281,12 @@ fn f(x: f64, precision: usize) -> String {
     if x.is_finite() {
         format!("{x:.precision$}")
     } else {
-        crate::printf::g_body(x, precision)
+        radc_lang::c_number::format_g(x, precision)
     }
 }
 
 fn e(x: f64, precision: usize) -> String {
-    crate::printf::e(x, precision)
+    radc_lang::c_number::format_e(x, precision)
 }
 
 fn radians(degrees: f64) -> f64 {

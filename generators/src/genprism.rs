@@ -5,9 +5,9 @@
 //! direction decides which way the surfaces face. `-r` rounds the edges with cylinders
 //! and spheres, `-c` says the outline is already closed, `-e` drops the end caps.
 
-use crate::printf::g;
-use crate::words::{atof, atoi, is_c_space, strtod_prefix};
+use crate::words::atoi;
 use crate::{GenError, Host, command_comment};
+use radc_lang::c_number::{atof, format_g_width as g, is_c_space, strtod};
 
 const USAGE: &str =
     "genprism material name { - | vfile | N v1 v2 .. vN } [-l lvect][-r radius][-c][-e]";
@@ -122,9 +122,9 @@ pub fn genprism(args: &[String], host: &mut dyn Host) -> Result<String, GenError
 fn read_vertices(text: &str, name: &str) -> Result<Vec<[f64; 2]>, GenError> {
     let mut rest = text;
     let mut next = || {
-        let (v, used) = strtod_prefix(rest)?;
-        rest = &rest[used..];
-        Some(v)
+        let n = strtod(rest.as_bytes());
+        rest = rest.get(n.len..)?;
+        (n.len > 0).then_some(n.value)
     };
     let mut verts = Vec::new();
     while let (Some(x), Some(y)) = (next(), next()) {

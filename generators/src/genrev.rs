@@ -7,8 +7,8 @@
 //! interpolates the normal between neighbouring segments.
 
 use crate::curves::CurveProgram;
-use crate::printf::g;
 use crate::{GenError, Host, command_comment};
+use radc_lang::c_number::format_g_width as g;
 
 const USAGE: &str = "genrev material name z(t) r(t) nseg [-e expr] [-f file] [-s]";
 /// genrev's own tolerance for a coordinate not changing.

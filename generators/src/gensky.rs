@@ -9,8 +9,9 @@
 //! algorithm; without, from the older Julian-day approximations.
 
 use crate::sun::{Site, declination, julian_day};
-use crate::words::{atof, atoi};
+use crate::words::atoi;
 use crate::{GenError, command_comment};
+use radc_lang::c_number::atof;
 use std::f64::consts::PI;
 
 const USAGE: &str = "gensky month day hour [options]\n   Or: gensky -ang altitude azimuth [options]\n   Or: gensky -defaults";
@@ -429,5 +430,5 @@ struct Derived {
 
 /// `%.Pe` as C prints it.
 fn c_e(x: f64, precision: usize) -> String {
-    crate::printf::e(x, precision)
+    radc_lang::c_number::format_e(x, precision)
 }

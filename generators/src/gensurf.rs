@@ -11,9 +11,9 @@
 
 use crate::curves::{CurveEval, CurveProgram};
 use crate::mesh::{cross, normalize, sub};
-use crate::printf::{g, g_body};
-use crate::words::{Stream, atof, is_flt};
+use crate::words::Stream;
 use crate::{GenError, Host, command_comment};
+use radc_lang::c_number::{atof, format_g as g_body, format_g_width as g, is_flt};
 
 const USAGE: &str = "gensurf material name x(s,t) y(s,t) z(s,t) m n [-s][-o][-e expr][-f file]";
 const FTINY: f64 = 1e-6;

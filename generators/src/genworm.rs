@@ -8,8 +8,8 @@
 //! and `bspline` (same formulas) defined.
 
 use crate::curves::CurveProgram;
-use crate::printf::g;
 use crate::{GenError, Host, command_comment};
+use radc_lang::c_number::format_g_width as g;
 
 const USAGE: &str = "genworm material name x(t) y(t) z(t) r(t) nseg [-e expr] [-f file]";
 const FTINY: f64 = 1e-6;

@@ -26,7 +26,6 @@ pub mod gensky;
 pub mod gensurf;
 pub mod genworm;
 mod mesh;
-pub mod printf;
 mod sun;
 mod wavefront;
 pub mod words;
@@ -185,6 +184,21 @@ pub trait Host {
             )),
         ))
     }
+}
+
+/// How hosts answer [`Host::read_file`]: the first candidate of `search` (from the
+/// folder `dir` where the policy starts there) that `read` can read, or else radc's
+/// built-in library file of that name; `read` is the host's file system.
+pub fn read_on_path(
+    search: &radc_lang::search_path::SearchPath,
+    path: &str,
+    dir: Option<&std::path::Path>,
+    read: impl Fn(&std::path::Path) -> Option<Vec<u8>>,
+) -> Result<String, GenError> {
+    search
+        .read_text(path, dir, read)
+        .map(radc_lang::search_path::Found::into_text)
+        .ok_or_else(|| GenError::Host(format!("cannot find file \"{path}\"")))
 }
 
 /// A host with no files and no standard input, for generators that need neither.

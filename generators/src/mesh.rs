@@ -7,7 +7,7 @@
 //! degenerate and skipped, normals are unit vectors stored in single precision, and
 //! `normalize()` uses its first-order shortcut for nearly unit vectors.
 
-use crate::printf::g;
+use radc_lang::c_number::format_g_width as g;
 
 pub const FTINY: f64 = 1e-6;
 

@@ -3,7 +3,7 @@
 //! (`src/common/writewfobj.c`) over the [`Mesh`] genbox builds.
 
 use crate::mesh::{FTINY, Mesh};
-use crate::printf::{e, g_body};
+use radc_lang::c_number::{format_e as e, format_g as g_body};
 use std::collections::HashMap;
 
 /// The most texture or normal variants `replace_vertex()` keeps per vertex.

@@ -13,9 +13,10 @@
 //! other command goes to the [`Host`]. With `-c` they are written back as commands
 //! piped through `xform -e` with the same transform.
 
-use crate::printf::g;
-use crate::words::{Stream, atoi, is_flt, is_int, put_word};
+use crate::words::{Stream, atoi, put_word};
 use crate::{Failure, GenError, Host};
+use radc_lang::c_number::{format_g_width as g, is_c_space, is_flt, is_int};
+use radc_lang::schema::{self, Category, PrimitiveType};
 use radc_lang::transform::Transform;
 use radc_lang::{FileId, Span};
 
@@ -258,7 +259,7 @@ impl Run<'_> {
         let mut input = Stream::new(text);
         let mut objects = 0;
         while let Some(c) = input.peek() {
-            if crate::words::is_c_space(c) {
+            if is_c_space(c) {
                 input.next_byte();
             } else if c == b'#' {
                 out.push_str(&input.comment());
@@ -375,7 +376,7 @@ fn argument_line_words(line: &str) -> Vec<String> {
     let mut words = Vec::new();
     let mut quote: Option<u8> = None;
     loop {
-        while b.get(cp).is_some_and(|&c| crate::words::is_c_space(c)) {
+        while b.get(cp).is_some_and(|&c| is_c_space(c)) {
             cp += 1;
         }
         if let Some(&q @ (b'"' | b'\'')) = b.get(cp) {
@@ -400,7 +401,7 @@ fn argument_line_words(line: &str) -> Vec<String> {
             }
             None => {
                 cp += 1;
-                while cp < b.len() && !crate::words::is_c_space(b[cp]) {
+                while cp < b.len() && !is_c_space(b[cp]) {
                     cp += 1;
                 }
                 cp
@@ -525,96 +526,29 @@ enum Handler {
     Ring,
 }
 
-/// A type as xform sees it: its handler, and for surfaces the type it becomes with -I.
-struct TypeInfo {
-    name: &'static str,
-    handler: Handler,
-    /// `None` for modifiers, which keep their modifier and name.
-    inverse: Option<&'static str>,
-}
-
-const fn modifier(name: &'static str, handler: Handler) -> TypeInfo {
-    TypeInfo {
-        name,
-        handler,
-        inverse: None,
+/// xform's `initotypes()` choice of handler for a type of the schema: the types whose
+/// reals are geometry (or directions, radii, indices of refraction, text layouts) get
+/// their own; the others take the transform in their strings when the schema says
+/// their strings may end with one (Radiance's `T_F` types), or pass through unchanged.
+fn handler(ty: &PrimitiveType) -> Handler {
+    match ty.name {
+        _ if ty.category == Category::Alias => Handler::Alias,
+        "glow" => Handler::Glow,
+        "spotlight" => Handler::Spot,
+        "mist" => Handler::Mist,
+        "dielectric" => Handler::Dielectric,
+        "interface" => Handler::Interface,
+        "brighttext" | "colortext" | "mixtext" => Handler::Text,
+        "source" => Handler::Source,
+        "sphere" | "bubble" => Handler::Sphere,
+        "polygon" => Handler::Face,
+        "cone" | "cup" => Handler::Cone,
+        "cylinder" | "tube" => Handler::Cylinder,
+        "ring" => Handler::Ring,
+        _ if ty.strings.transform => Handler::AddTransform,
+        _ => Handler::Default,
     }
 }
-
-const fn surface(name: &'static str, handler: Handler, inverse: &'static str) -> TypeInfo {
-    TypeInfo {
-        name,
-        handler,
-        inverse: Some(inverse),
-    }
-}
-
-/// Radiance's `otypes.h` list with xform's `initotypes()` choices: types with functions
-/// (T_F) take the transform in their strings.
-const TYPES: &[TypeInfo] = {
-    use Handler::*;
-    &[
-        surface("polygon", Face, "polygon"),
-        surface("cone", Cone, "cup"),
-        surface("sphere", Sphere, "bubble"),
-        modifier("texfunc", AddTransform),
-        surface("ring", Ring, "ring"),
-        surface("cylinder", Cylinder, "tube"),
-        surface("instance", AddTransform, "instance"),
-        surface("cup", Cone, "cone"),
-        surface("bubble", Sphere, "sphere"),
-        surface("tube", Cylinder, "cylinder"),
-        surface("mesh", AddTransform, "mesh"),
-        modifier("alias", Alias),
-        modifier("plastic", Default),
-        modifier("metal", Default),
-        modifier("glass", Default),
-        modifier("trans", Default),
-        modifier("dielectric", Dielectric),
-        modifier("plastic2", AddTransform),
-        modifier("metal2", AddTransform),
-        modifier("trans2", AddTransform),
-        modifier("interface", Interface),
-        modifier("plasfunc", AddTransform),
-        modifier("metfunc", AddTransform),
-        modifier("brightfunc", AddTransform),
-        modifier("brightdata", AddTransform),
-        modifier("brighttext", Text),
-        modifier("colorpict", AddTransform),
-        modifier("glow", Glow),
-        surface("source", Source, "source"),
-        modifier("light", Default),
-        modifier("illum", Default),
-        modifier("spotlight", Spot),
-        modifier("mist", Mist),
-        modifier("mirror", Default),
-        modifier("transfunc", AddTransform),
-        modifier("BRTDfunc", AddTransform),
-        modifier("BSDF", AddTransform),
-        modifier("aBSDF", AddTransform),
-        modifier("WGMDfunc", AddTransform),
-        modifier("plasdata", AddTransform),
-        modifier("metdata", AddTransform),
-        modifier("transdata", AddTransform),
-        modifier("colorfunc", AddTransform),
-        modifier("antimatter", Default),
-        modifier("colordata", AddTransform),
-        modifier("colortext", Text),
-        modifier("texdata", AddTransform),
-        modifier("mixfunc", AddTransform),
-        modifier("mixdata", AddTransform),
-        modifier("mixtext", Text),
-        modifier("mixpict", AddTransform),
-        modifier("prism1", AddTransform),
-        modifier("prism2", AddTransform),
-        modifier("ashik2", AddTransform),
-        modifier("spectrum", Default),
-        modifier("specfile", Default),
-        modifier("specfunc", AddTransform),
-        modifier("specdata", AddTransform),
-        modifier("specpict", AddTransform),
-    ]
-};
 
 /// A primitive's argument lists (`FUNARGS`).
 struct Args {
@@ -644,7 +578,7 @@ fn read_args(input: &mut Stream) -> Option<Args> {
         if !is_flt(&w) {
             return None;
         }
-        reals.push(crate::words::atof(&w));
+        reals.push(radc_lang::c_number::atof(&w));
     }
     Some(Args { strings, reals })
 }
@@ -653,37 +587,41 @@ fn read_args(input: &mut Stream) -> Option<Args> {
 fn object(s: &Settings, file: &str, input: &mut Stream, out: &mut String) -> Result<(), GenError> {
     let modifier_name = input.word(MAX_WORD).unwrap_or_default();
     let type_name = input.word(TYPE_WORD).unwrap_or_default();
-    let Some(info) = TYPES.iter().find(|t| t.name == type_name) else {
+    let Some(info) = schema::lookup(&type_name) else {
         return Err(GenError::Scene(format!(
             "({file}): unknown object type \"{type_name}\""
         )));
     };
     out.push('\n');
-    match info.inverse {
-        None => {
-            put_word(out, &modifier_name);
-            out.push_str(&format!(" {type_name} "));
-        }
-        Some(inverse) => {
-            put_word(out, s.newmod.unwrap_or(&modifier_name));
-            let shown = if s.invert { inverse } else { info.name };
-            out.push_str(&format!(" {shown} "));
-        }
+    // Surfaces take the new modifier, the id prefix and (inside out) their inverse
+    // type; modifiers keep their modifier and name.
+    let surface = info.category == Category::Surface;
+    if surface {
+        put_word(out, s.newmod.unwrap_or(&modifier_name));
+        let shown = match info.inverse {
+            Some(inverse) if s.invert => inverse,
+            _ => info.name,
+        };
+        out.push_str(&format!(" {shown} "));
+    } else {
+        put_word(out, &modifier_name);
+        out.push_str(&format!(" {type_name} "));
     }
     let name = input.word(MAX_WORD).unwrap_or_default();
-    match (&s.idprefix, info.inverse) {
-        (Some(prefix), Some(_)) => put_word(out, &format!("{prefix}.{name}")),
+    match &s.idprefix {
+        Some(prefix) if surface => put_word(out, &format!("{prefix}.{name}")),
         _ => put_word(out, &name),
     }
     out.push('\n');
     let bad = || GenError::Scene(format!("({file}): bad {type_name} \"{name}\""));
-    if info.handler == Handler::Alias {
+    let handler = handler(info);
+    if handler == Handler::Alias {
         let target = input.word(MAX_WORD).ok_or_else(bad)?;
         out.push_str(&format!("\t{target}\n"));
         return Ok(());
     }
     let args = read_args(input).ok_or_else(bad)?;
-    write_args(s, info.handler, &args, out).ok_or_else(bad)
+    write_args(s, handler, &args, out).ok_or_else(bad)
 }
 
 fn g18(x: f64) -> String {
@@ -894,4 +832,55 @@ fn prefix_sources(prefix: &str, names: &str) -> String {
         rest = &rest[end..];
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The names xform gives handlers of their own are types of the schema, and the
+    /// types that take a transform in their strings are the schema's `T_F` types.
+    #[test]
+    fn handlers_follow_the_schema() {
+        for name in [
+            "glow",
+            "spotlight",
+            "mist",
+            "dielectric",
+            "interface",
+            "brighttext",
+            "colortext",
+            "mixtext",
+            "source",
+            "sphere",
+            "bubble",
+            "polygon",
+            "cone",
+            "cup",
+            "cylinder",
+            "tube",
+            "ring",
+        ] {
+            let ty = schema::lookup(name).expect(name);
+            assert!(
+                !matches!(handler(ty), Handler::Default | Handler::AddTransform),
+                "{name}"
+            );
+        }
+        let transformed: Vec<_> = schema::PRIMITIVE_TYPES
+            .iter()
+            .filter(|t| handler(t) == Handler::AddTransform)
+            .map(|t| t.name)
+            .collect();
+        assert_eq!(transformed.len(), 31, "{transformed:?}");
+        assert!(transformed.contains(&"instance") && transformed.contains(&"mesh"));
+        let inverted: Vec<_> = schema::PRIMITIVE_TYPES
+            .iter()
+            .filter_map(|t| Some((t.name, t.inverse?)))
+            .collect();
+        for (a, b) in &inverted {
+            assert_eq!(schema::lookup(b).and_then(|t| t.inverse), Some(*a));
+        }
+        assert_eq!(inverted.len(), 6);
+    }
 }

@@ -6,6 +6,56 @@ use crate::compile::JitProgram;
 use crate::interp::{Error, Interpreter, Outputs, Record};
 use radc_lang::cal::eval::{Input, Warning};
 
+/// rcalc's record numbering (rcalc.c `execute`): `recno` counts the records read in
+/// the current input file, `outno` the records `cond` accepted plus the one begun, so
+/// both are 1 in a file's first record. Both engines keep it in one of these.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RecordNumbering {
+    records: u64,
+    accepted: u64,
+}
+
+/// The numbers a record begun gets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RecordNumbers {
+    pub recno: f64,
+    pub outno: f64,
+}
+
+impl RecordNumbering {
+    /// A new input file: numbering starts again from 1.
+    pub fn start_file(&mut self) {
+        *self = RecordNumbering::default();
+    }
+
+    /// Number the next record `n + 1`, as if `n` records came before.
+    pub fn set_records_before(&mut self, n: u64) {
+        self.records = n;
+    }
+
+    /// Counts a new record and gives its `recno` and `outno`.
+    pub fn begin(&mut self) -> RecordNumbers {
+        self.records += 1;
+        RecordNumbers {
+            recno: self.records as f64,
+            outno: (self.accepted + 1) as f64,
+        }
+    }
+
+    /// Whether `cond`'s value accepts the record begun (`varvalue("cond") > 0.0`: a NaN
+    /// rejects it), counting it for `outno` if so.
+    pub fn accept(&mut self, cond: f64) -> bool {
+        let accepted = cond.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
+        self.accepted += u64::from(accepted);
+        accepted
+    }
+
+    /// A record accepted without a `cond`.
+    pub fn accept_all(&mut self) {
+        self.accepted += 1;
+    }
+}
+
 pub trait RecordEngine {
     /// A new input file: rcalc numbers records (`recno`, `outno`) from 1 in each.
     fn start_file(&mut self);
@@ -107,5 +157,29 @@ impl RecordEngine for JitProgram {
     }
     fn take_partial(&mut self) -> Outputs {
         JitProgram::take_partial(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn records_are_numbered_per_file_and_outputs_per_accepted_record() {
+        let mut n = RecordNumbering::default();
+        let first = n.begin();
+        assert_eq!((first.recno, first.outno), (1.0, 1.0));
+        assert!(!n.accept(0.0));
+        let second = n.begin();
+        assert_eq!((second.recno, second.outno), (2.0, 1.0));
+        assert!(!n.accept(f64::NAN));
+        n.begin();
+        assert!(n.accept(0.5));
+        let fourth = n.begin();
+        assert_eq!((fourth.recno, fourth.outno), (4.0, 2.0));
+        n.start_file();
+        n.set_records_before(9);
+        let next = n.begin();
+        assert_eq!((next.recno, next.outno), (10.0, 1.0));
     }
 }

@@ -19,6 +19,8 @@
 
 use std::fmt;
 
+use crate::c_number::{atol, is_c_space, is_int, real_word};
+
 /// Radiance's `MAXDDIM`: the most dimensions a data file may have.
 pub const MAX_DIMENSIONS: usize = 6;
 
@@ -378,11 +380,6 @@ struct Words<'a> {
     pos: usize,
 }
 
-/// C's `isspace` in the C locale (Rust's ASCII test omits vertical tab).
-fn is_c_space(b: u8) -> bool {
-    matches!(b, b' ' | b'\t' | b'\n' | b'\x0b' | b'\x0c' | b'\r')
-}
-
 impl<'a> Words<'a> {
     fn new(text: &'a str) -> Self {
         Words { text, pos: 0 }
@@ -435,13 +432,11 @@ impl<'a> Words<'a> {
 
     fn real(&mut self, expected: Expected) -> Result<f32, DataFileError> {
         let word = self.next_word(expected)?;
-        if !is_c_float(word.text) {
-            return Err(self.bad_number(&word, expected));
-        }
-        // `atof` then a cast to float: round to double, then to single precision.
-        match word.text.parse::<f64>() {
-            Ok(v) => Ok(v as f32),
-            Err(_) => Err(self.bad_number(&word, expected)),
+        // `isflt`, then `atof` and a cast to float: round to double, then to single
+        // precision.
+        match real_word(word.text.as_bytes()) {
+            Some(v) => Ok(v as f32),
+            None => Err(self.bad_number(&word, expected)),
         }
     }
 
@@ -467,50 +462,10 @@ impl<'a> Words<'a> {
     }
 }
 
-/// Radiance's `isint` followed by `atoi`: `[+-]digits`; glibc saturates to a 64-bit long
-/// and the conversion to `int` keeps the low 32 bits.
+/// Radiance's `isint` followed by `atoi`: glibc saturates to a 64-bit long and the
+/// conversion to `int` keeps the low 32 bits.
 fn c_atoi(word: &str) -> Option<i32> {
-    let digits = word.strip_prefix(['+', '-']).unwrap_or(word);
-    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    let negative = word.starts_with('-');
-    let magnitude = digits.bytes().fold(0i128, |acc, b| {
-        (acc * 10 + i128::from(b - b'0')).min(i128::from(i64::MAX) + 1)
-    });
-    let long = if negative {
-        (-magnitude).max(i128::from(i64::MIN))
-    } else {
-        magnitude.min(i128::from(i64::MAX))
-    };
-    Some(long as i64 as i32)
-}
-
-/// Radiance's `isflt`: `[+-](digits[.digits]|.digits)[(e|E)[+-]digits]`, `5.` included.
-fn is_c_float(word: &str) -> bool {
-    let b = word.as_bytes();
-    let mut i = usize::from(matches!(b.first(), Some(b'+' | b'-')));
-    let int_digits = b[i..].iter().take_while(|c| c.is_ascii_digit()).count();
-    i += int_digits;
-    let mut frac_digits = 0;
-    if b.get(i) == Some(&b'.') {
-        i += 1;
-        frac_digits = b[i..].iter().take_while(|c| c.is_ascii_digit()).count();
-        i += frac_digits;
-    }
-    if int_digits + frac_digits == 0 {
-        return false;
-    }
-    if matches!(b.get(i), Some(b'e' | b'E')) {
-        i += 1;
-        i += usize::from(matches!(b.get(i), Some(b'+' | b'-')));
-        let exp_digits = b[i..].iter().take_while(|c| c.is_ascii_digit()).count();
-        if exp_digits == 0 {
-            return false;
-        }
-        i += exp_digits;
-    }
-    i == b.len()
+    is_int(word).then(|| atol(word) as i32)
 }
 
 #[cfg(test)]
@@ -619,15 +574,7 @@ mod tests {
     }
 
     #[test]
-    fn numbers_follow_radiance_syntax() {
-        for ok in ["5", "-5", "+5", "5.", ".5", "5.5e3", "1E-2", "1e+2"] {
-            assert!(is_c_float(ok), "{ok}");
-        }
-        for bad in [
-            "", ".", "-", "e5", "1e", "1e+", "0x1", "inf", "nan", "1.5.2", "1,5",
-        ] {
-            assert!(!is_c_float(bad), "{bad}");
-        }
+    fn integers_follow_radiance_syntax() {
         assert_eq!(c_atoi("007"), Some(7));
         assert_eq!(c_atoi("2.0"), None);
         assert_eq!(c_atoi("99999999999999999999999"), Some(-1));

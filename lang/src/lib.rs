@@ -4,6 +4,7 @@
 //! spawns a process: the CLI and the language server are the only places that touch
 //! the outside world, so both see exactly the same diagnostics.
 
+pub mod c_number;
 pub mod cal;
 pub mod datafile;
 pub mod db;
@@ -11,6 +12,7 @@ pub mod diagnostic;
 pub mod library;
 pub mod scene;
 pub mod schema;
+pub mod search_path;
 pub mod source;
 pub mod transform;
 

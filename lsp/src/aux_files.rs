@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use radc_generators::expansion::expansion;
-use radc_generators::{GenError, Host};
+use radc_generators::{GenError, Host, read_on_path};
 use radc_lang::db::AuxFiles;
 use radc_lang::scene::Expansion;
 use radc_lang::schema::FileKind;
+use radc_lang::search_path::{Found, Policy, SearchPath};
 
 use crate::config::Config;
 
@@ -20,7 +21,11 @@ use crate::config::Config;
 const MAX_AUX_FILE: u64 = 64 << 20;
 
 pub struct DiskAuxFiles {
-    raypath: Vec<PathBuf>,
+    /// `Policy::SceneCurrentRaypath`, as `radc check` searches.
+    search: SearchPath,
+    /// The same folders in the order generators run from a scene search them
+    /// (`Policy::SceneRaypath`, as `radc check` runs them).
+    generator_search: SearchPath,
     generators: bool,
     overlay: Overlay,
 }
@@ -59,30 +64,29 @@ impl DiskAuxFiles {
                 .unwrap_or_default()
         });
         DiskAuxFiles {
-            raypath,
+            search: SearchPath::with_folders(Policy::SceneCurrentRaypath, raypath.clone()),
+            generator_search: SearchPath::with_folders(Policy::SceneRaypath, raypath),
             generators: config.generators,
             overlay,
         }
     }
 
     fn find(&self, name: &str, scene_path: &Path) -> Option<PathBuf> {
-        let p = Path::new(name);
-        if p.is_absolute() {
-            return p.exists().then(|| p.to_path_buf());
-        }
-        let scene_dir = scene_path.parent().map(Path::to_path_buf);
-        scene_dir
-            .into_iter()
-            .chain(std::iter::once(PathBuf::from(".")))
-            .chain(self.raypath.iter().cloned())
-            .map(|d| d.join(p))
-            .find(|candidate| candidate.exists())
+        self.search.find(name, scene_path.parent(), Path::exists)
+    }
+
+    /// A file on the search path, or else radc's built-in text of a library function
+    /// file of that name (a user's file of that name wins, as in Radiance). Editors
+    /// have no file to open for the built-in text, so `locate` does not report it.
+    fn lookup(&self, name: &str, kind: FileKind, scene_path: &Path) -> Option<Found<()>> {
+        self.search
+            .lookup(name, kind, scene_path.parent(), Path::exists)
     }
 }
 
 impl AuxFiles for DiskAuxFiles {
     fn exists(&self, name: &str, kind: FileKind, scene_path: &Path) -> bool {
-        self.find(name, scene_path).is_some() || builtin(name, kind).is_some()
+        self.lookup(name, kind, scene_path).is_some()
     }
 
     fn locate(&self, name: &str, _kind: FileKind, scene_path: &Path) -> Option<PathBuf> {
@@ -90,8 +94,9 @@ impl AuxFiles for DiskAuxFiles {
     }
 
     fn read(&self, name: &str, kind: FileKind, scene_path: &Path) -> Option<String> {
-        let Some(path) = self.find(name, scene_path) else {
-            return builtin(name, kind).map(str::to_string);
+        let path = match self.lookup(name, kind, scene_path)? {
+            Found::File(path, ()) => path,
+            Found::Builtin(text) => return Some(text.to_string()),
         };
         if let Some(text) = self.overlay.get(&path) {
             return Some(text);
@@ -111,8 +116,9 @@ impl AuxFiles for DiskAuxFiles {
         max: usize,
     ) -> Option<Vec<u8>> {
         use std::io::Read;
-        let Some(path) = self.find(name, scene_path) else {
-            return builtin(name, kind).map(|t| t.bytes().take(max).collect());
+        let path = match self.lookup(name, kind, scene_path)? {
+            Found::File(path, ()) => path,
+            Found::Builtin(text) => return Some(text.bytes().take(max).collect()),
         };
         let file = std::fs::File::open(path).ok()?;
         let mut head = Vec::with_capacity(max);
@@ -131,7 +137,7 @@ impl AuxFiles for DiskAuxFiles {
                 .parent()
                 .map(Path::to_path_buf)
                 .unwrap_or_default(),
-            raypath: &self.raypath,
+            search: &self.generator_search,
             warnings: Vec::new(),
         };
         // The database numbers the output's file; `FileId(0)` stands in for it.
@@ -149,39 +155,19 @@ impl AuxFiles for DiskAuxFiles {
     }
 }
 
-/// radc's built-in text of a library function file, for a name no file on the search
-/// path answers (a user's file of that name wins, as in Radiance). Editors have no
-/// file to open for it, so `locate` does not report it.
-fn builtin(name: &str, kind: FileKind) -> Option<&'static str> {
-    (kind == FileKind::Cal)
-        .then(|| radc_lang::library::builtin(name))
-        .flatten()
-}
-
 /// Files for generators run from a scene: relative to the scene's folder, then
 /// RAYPATH, then radc's built-in function files. Commands nested in files xform reads are refused (the trait's default).
 struct GeneratorHost<'a> {
     dir: PathBuf,
-    raypath: &'a [PathBuf],
+    search: &'a SearchPath,
     warnings: Vec<String>,
 }
 
 impl Host for GeneratorHost<'_> {
     fn read_file(&mut self, path: &str) -> Result<String, GenError> {
-        let p = Path::new(path);
-        let mut candidates = vec![self.dir.join(p)];
-        if !p.is_absolute() {
-            candidates.extend(self.raypath.iter().map(|d| d.join(p)));
-        }
-        for c in &candidates {
-            if let Ok(bytes) = std::fs::read(c) {
-                return Ok(String::from_utf8_lossy(&bytes).into_owned());
-            }
-        }
-        if let Some(text) = radc_lang::library::builtin(path) {
-            return Ok(text.to_string());
-        }
-        Err(GenError::Host(format!("cannot find file \"{path}\"")))
+        read_on_path(self.search, path, Some(&self.dir), |c| {
+            std::fs::read(c).ok()
+        })
     }
 
     fn read_stdin(&mut self) -> Result<String, GenError> {

@@ -12,17 +12,18 @@ use std::process::ExitCode;
 
 use radc_lang::scene::{self, FileLookup, Keep, Lowering};
 use radc_lang::schema::FileKind;
+use radc_lang::search_path::{Found, Policy, SearchPath};
 use radc_lang::{Diagnostic, FileId, Severity};
 
 use super::USAGE_ERROR;
 use super::expand::{Commands, PendingSources};
-use super::report::{self, Format, Sources};
+use super::report::{self, ReportStyle, Sources};
 
 const USAGE: &str =
     "usage: radc check [--format human|json] [--deny warnings] [--quiet] FILE|DIR...";
 
 struct Options {
-    format: Format,
+    format: ReportStyle,
     deny_warnings: bool,
     quiet: bool,
     allow_commands: bool,
@@ -31,7 +32,7 @@ struct Options {
 
 fn parse_args(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
-        format: Format::Human,
+        format: ReportStyle::Human,
         deny_warnings: false,
         quiet: false,
         allow_commands: false,
@@ -41,12 +42,12 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
     while let Some(a) = it.next() {
         match a.as_str() {
             "--format" => match it.next().map(String::as_str) {
-                Some("json") => o.format = Format::Json,
-                Some("human") => o.format = Format::Human,
+                Some("json") => o.format = ReportStyle::Json,
+                Some("human") => o.format = ReportStyle::Human,
                 other => return Err(format!("--format takes 'human' or 'json', not {other:?}")),
             },
-            "--format=json" => o.format = Format::Json,
-            "--format=human" => o.format = Format::Human,
+            "--format=json" => o.format = ReportStyle::Json,
+            "--format=human" => o.format = ReportStyle::Human,
             "--deny" => match it.next().map(String::as_str) {
                 Some("warnings") => o.deny_warnings = true,
                 other => return Err(format!("--deny takes 'warnings', not {other:?}")),
@@ -135,7 +136,7 @@ pub fn run(args: &[String]) -> ExitCode {
         .count();
     let warnings = diags.len() - scene_errors;
     let errors = scene_errors + pictures;
-    if opts.format == Format::Human && !opts.quiet {
+    if opts.format == ReportStyle::Human && !opts.quiet {
         // A closed pipe (`radc check ... | head`) is not an error worth a panic.
         let _ = writeln!(
             std::io::stdout(),
@@ -213,7 +214,7 @@ pub(super) fn check_scene(
     }
     let pending = PendingSources::new(sources.next_id().0);
     let commands = Commands::new(dirs.clone(), &pending, allow_commands);
-    let lookup = SearchPath::new(dirs, &pending);
+    let lookup = SceneFiles::new(dirs, &pending);
     let mut lowering = Lowering::new(&lookup, &commands, keep);
     for (id, found, warn_unused) in read {
         let text = sources.get(id).map_or("", |s| s.text.as_str());
@@ -253,65 +254,56 @@ fn read_source(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) 
     }
 }
 
-/// Finds auxiliary files as Radiance does, plus the scene's own folder: absolute
-/// paths as they are; otherwise the folder of the scene file that names it, the
-/// current folder, then each folder of RAYPATH.
-struct SearchPath<'a> {
+/// Auxiliary files on disk, found along the search path of `radc check` and the
+/// language server (`Policy::SceneCurrentRaypath`: the folder of the scene file that
+/// names it, the current folder, then each folder of RAYPATH).
+struct SceneFiles<'a> {
     scene_dirs: Vec<(FileId, PathBuf)>,
-    raypath: Vec<PathBuf>,
+    search: SearchPath,
     pending: &'a PendingSources,
 }
 
-impl<'a> SearchPath<'a> {
+impl<'a> SceneFiles<'a> {
     fn new(scene_dirs: Vec<(FileId, PathBuf)>, pending: &'a PendingSources) -> Self {
-        let raypath = std::env::var_os("RAYPATH")
-            .map(|v| std::env::split_paths(&v).collect())
-            .unwrap_or_default();
-        SearchPath {
+        let raypath = std::env::var_os("RAYPATH");
+        SceneFiles {
             scene_dirs,
-            raypath,
+            search: SearchPath::new(Policy::SceneCurrentRaypath, raypath.as_deref()),
             pending,
         }
     }
-}
 
-impl SearchPath<'_> {
-    fn find(&self, name: &str, from: FileId) -> Option<PathBuf> {
-        let p = Path::new(name);
-        if p.is_absolute() {
-            return p.exists().then(|| p.to_path_buf());
-        }
-        let scene_dir = self
-            .scene_dirs
+    fn scene_dir(&self, from: FileId) -> Option<PathBuf> {
+        self.scene_dirs
             .iter()
             .find(|(f, _)| *f == from)
             .map(|(_, d)| d.clone())
-            .or_else(|| self.pending.dir_of(from));
-        scene_dir
-            .into_iter()
-            .chain(std::iter::once(PathBuf::from(".")))
-            .chain(self.raypath.iter().cloned())
-            .map(|d| d.join(p))
-            .find(|candidate| candidate.exists())
+            .or_else(|| self.pending.dir_of(from))
+    }
+
+    fn find(&self, name: &str, from: FileId) -> Option<PathBuf> {
+        let dir = self.scene_dir(from);
+        self.search.find(name, dir.as_deref(), Path::exists)
+    }
+
+    /// radc's own text of a library function file, used only when no file of that
+    /// name is on the search path.
+    fn builtin(&self, name: &str, kind: FileKind, from: FileId) -> Option<&'static str> {
+        let dir = self.scene_dir(from);
+        match self
+            .search
+            .lookup(name, kind, dir.as_deref(), Path::exists)?
+        {
+            Found::Builtin(text) => Some(text),
+            Found::File(..) => None,
+        }
     }
 }
 
 /// Auxiliary files larger than this are not read for content checks.
 const MAX_AUX_FILE: u64 = 64 << 20;
 
-impl SearchPath<'_> {
-    /// radc's own text of a library function file, used only when no file of that
-    /// name is on the search path (as Radiance finds its library on RAYPATH, and a
-    /// user's copy there wins).
-    fn builtin(&self, name: &str, kind: FileKind, from: FileId) -> Option<&'static str> {
-        if kind != FileKind::Cal || self.find(name, from).is_some() {
-            return None;
-        }
-        radc_lang::library::builtin(name)
-    }
-}
-
-impl FileLookup for SearchPath<'_> {
+impl FileLookup for SceneFiles<'_> {
     fn exists(&self, name: &str, kind: FileKind, from: FileId) -> bool {
         self.find(name, from).is_some() || self.builtin(name, kind, from).is_some()
     }

@@ -8,9 +8,10 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use radc_generators::expansion::expansion;
-use radc_generators::{GenError, Host};
+use radc_generators::{GenError, Host, read_on_path};
 use radc_lang::FileId;
 use radc_lang::scene::{CommandExpander, Expansion};
+use radc_lang::search_path::{Policy, SearchPath};
 
 /// Files a check reads beyond the scenes named on the command line (command
 /// outputs, function files), numbered after the sources already read so diagnostics
@@ -138,8 +139,8 @@ impl CommandExpander for Commands<'_> {
     }
 }
 
-/// Files for generators run from a scene: relative to the scene's folder, then RAYPATH,
-/// then radc's built-in function files (`-f rayinit.cal` with no Radiance installed).
+/// Files for generators run from a scene (`Policy::SceneRaypath`): relative to the
+/// scene's folder, then RAYPATH, then radc's built-in function files (`-f rayinit.cal` with no Radiance installed).
 struct SceneHost {
     dir: PathBuf,
     /// The previous pipeline stage's output.
@@ -150,20 +151,8 @@ struct SceneHost {
 
 impl Host for SceneHost {
     fn read_file(&mut self, path: &str) -> Result<String, GenError> {
-        let p = Path::new(path);
-        let mut candidates = vec![self.dir.join(p)];
-        if let (false, Some(raypath)) = (p.is_absolute(), std::env::var_os("RAYPATH")) {
-            candidates.extend(std::env::split_paths(&raypath).map(|d| d.join(p)));
-        }
-        for c in &candidates {
-            if let Ok(bytes) = std::fs::read(c) {
-                return Ok(String::from_utf8_lossy(&bytes).into_owned());
-            }
-        }
-        if let Some(text) = radc_lang::library::builtin(path) {
-            return Ok(text.to_string());
-        }
-        Err(GenError::Host(format!("cannot find file \"{path}\"")))
+        let search = SearchPath::new(Policy::SceneRaypath, std::env::var_os("RAYPATH").as_deref());
+        read_on_path(&search, path, Some(&self.dir), |c| std::fs::read(c).ok())
     }
 
     fn read_stdin(&mut self) -> Result<String, GenError> {

@@ -2,7 +2,8 @@
 //! same output (see the `radc-generators` crate). This file is the host that gives
 //! them files, standard input and, only with `--allow-commands`, a shell.
 
-use radc_generators::{Failure, GenError, Host};
+use radc_generators::{Failure, GenError, Host, read_on_path};
+use radc_lang::search_path::{Policy, SearchPath};
 use std::io::{Read, Write};
 use std::process::ExitCode;
 
@@ -126,8 +127,8 @@ fn report(result: Result<String, Failure>) -> ExitCode {
     ExitCode::FAILURE
 }
 
-/// Files from the file system, relative names also searched along RAYPATH as
-/// Radiance's `getpath()` does; radc's built-in function files when none is found.
+/// Files from the file system (`Policy::CurrentRaypath`): relative names also
+/// searched along RAYPATH as Radiance's `getpath()` does; radc's built-in function files when none is found.
 #[derive(Default)]
 struct FileHost {
     allow_commands: bool,
@@ -135,20 +136,9 @@ struct FileHost {
 
 impl Host for FileHost {
     fn read_file(&mut self, path: &str) -> Result<String, GenError> {
-        let mut candidates = vec![std::path::PathBuf::from(path)];
-        if let (false, Ok(raypath)) = (path.starts_with('/'), std::env::var("RAYPATH")) {
-            let dirs = raypath.split(':').map(std::path::Path::new);
-            candidates.extend(dirs.map(|d| d.join(path)));
-        }
-        for c in &candidates {
-            if let Ok(bytes) = std::fs::read(c) {
-                return Ok(String::from_utf8_lossy(&bytes).into_owned());
-            }
-        }
-        if let Some(text) = radc_lang::library::builtin(path) {
-            return Ok(text.to_string());
-        }
-        Err(GenError::Host(format!("cannot find file \"{path}\"")))
+        let raypath = std::env::var_os("RAYPATH");
+        let search = SearchPath::new(Policy::CurrentRaypath, raypath.as_deref());
+        read_on_path(&search, path, None, |c| std::fs::read(c).ok())
     }
 
     fn read_stdin(&mut self) -> Result<String, GenError> {

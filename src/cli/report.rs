@@ -46,13 +46,15 @@ impl Sources {
     }
 }
 
+/// How diagnostics are shown (`--format`): ariadne reports for people, JSON lines for
+/// tools.
 #[derive(Clone, Copy, PartialEq, Eq)]
-pub enum Format {
+pub enum ReportStyle {
     Human,
     Json,
 }
 
-pub fn print(diags: &[Diagnostic], sources: &Sources, format: Format) {
+pub fn print(diags: &[Diagnostic], sources: &Sources, format: ReportStyle) {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
@@ -65,7 +67,7 @@ pub fn eprint(diags: &[Diagnostic], sources: &Sources) {
         print_to(
             diags,
             sources,
-            Format::Human,
+            ReportStyle::Human,
             false,
             &mut std::io::BufWriter::new(f),
         )
@@ -75,23 +77,23 @@ pub fn eprint(diags: &[Diagnostic], sources: &Sources) {
     let stderr = std::io::stderr();
     let mut out = stderr.lock();
     let color = out.is_terminal() && std::env::var_os("NO_COLOR").is_none();
-    print_to(diags, sources, Format::Human, color, &mut out);
+    print_to(diags, sources, ReportStyle::Human, color, &mut out);
 }
 
 fn print_to(
     diags: &[Diagnostic],
     sources: &Sources,
-    format: Format,
+    format: ReportStyle,
     color: bool,
     out: &mut impl Write,
 ) {
     match format {
-        Format::Json => {
+        ReportStyle::Json => {
             for d in diags {
                 let _ = writeln!(out, "{}", json(d, sources));
             }
         }
-        Format::Human => {
+        ReportStyle::Human => {
             // One line index per file for the whole run: building it per diagnostic
             // made tens of thousands of diagnostics on a big file take hours. Only
             // files a diagnostic points into are indexed (a clean 60 MB scene costs

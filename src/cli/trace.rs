@@ -21,8 +21,9 @@ use radc_renderer::{Options, RayState, Scene, Target, Tracer, picture};
 use rayon::prelude::*;
 
 use super::USAGE_ERROR;
-use super::ray_text::{c_exp_into, is_space, number_prefix, radiance_number, spaced_number};
+use super::ray_text::{c_exp_into, spaced_number};
 use super::report::{self, Sources};
+use radc_lang::c_number::{is_c_space, real_prefix, real_word};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
 [-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
@@ -47,8 +48,10 @@ const _: () = assert!(BATCH <= ray_order::MAX_RAYS && SORTED_BATCH <= ray_order:
 /// Rays one parallel task evaluates and formats.
 const CHUNK: usize = 128;
 
+/// How rays are read and values written (rtrace's `-f` letters: `-fad` reads text and
+/// writes doubles).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
-enum Format {
+enum RayEncoding {
     Ascii,
     Float,
     Double,
@@ -56,23 +59,23 @@ enum Format {
     Color,
 }
 
-impl Format {
-    fn from_char(c: char) -> Option<Format> {
+impl RayEncoding {
+    fn from_char(c: char) -> Option<RayEncoding> {
         match c {
-            'a' => Some(Format::Ascii),
-            'f' => Some(Format::Float),
-            'd' => Some(Format::Double),
-            'c' => Some(Format::Color),
+            'a' => Some(RayEncoding::Ascii),
+            'f' => Some(RayEncoding::Float),
+            'd' => Some(RayEncoding::Double),
+            'c' => Some(RayEncoding::Color),
             _ => None,
         }
     }
 
     fn name(self) -> &'static str {
         match self {
-            Format::Ascii => "ascii",
-            Format::Float => "float",
-            Format::Double => "double",
-            Format::Color => "32-bit_rle_rgbe",
+            RayEncoding::Ascii => "ascii",
+            RayEncoding::Float => "float",
+            RayEncoding::Double => "double",
+            RayEncoding::Color => "32-bit_rle_rgbe",
         }
     }
 }
@@ -154,8 +157,8 @@ struct Args {
     header: bool,
     irradiance: bool,
     outputs: Vec<Output>,
-    input: Format,
-    output: Format,
+    input: RayEncoding,
+    output: RayEncoding,
     options: Options,
     scenes: Vec<PathBuf>,
     /// `-x`, `-y`: a resolution line after the header, and the number of rays to read.
@@ -183,8 +186,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         header: true,
         irradiance: false,
         outputs: vec![Output::Value],
-        input: Format::Ascii,
-        output: Format::Ascii,
+        input: RayEncoding::Ascii,
+        output: RayEncoding::Ascii,
         options: Options::default(),
         scenes: Vec::new(),
         x_res: 0,
@@ -225,9 +228,10 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                     [i, o] => (*i, *o),
                     _ => return Err(format!("bad format '{s}'")),
                 };
-                a.input = Format::from_char(i).ok_or_else(|| format!("bad input format '{i}'"))?;
+                a.input =
+                    RayEncoding::from_char(i).ok_or_else(|| format!("bad input format '{i}'"))?;
                 a.output =
-                    Format::from_char(o).ok_or_else(|| format!("bad output format '{o}'"))?;
+                    RayEncoding::from_char(o).ok_or_else(|| format!("bad output format '{o}'"))?;
             }
             "-help" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),
@@ -741,7 +745,7 @@ pub(super) fn load_scene(
 /// Rays from stdin in rtrace's input formats.
 struct RayReader<R> {
     input: R,
-    format: Format,
+    format: RayEncoding,
     /// Lines are scanned in the input's buffer where they can be (`scan_line`); the
     /// others are copied here and split (`read_line`).
     fast: bool,
@@ -755,7 +759,7 @@ struct RayReader<R> {
 }
 
 impl<R: BufRead> RayReader<R> {
-    fn new(input: R, format: Format) -> Self {
+    fn new(input: R, format: RayEncoding) -> Self {
         RayReader {
             input,
             format,
@@ -788,7 +792,7 @@ impl<R: BufRead> RayReader<R> {
     }
 
     fn next_six(&mut self) -> Option<[f64; 6]> {
-        if self.format == Format::Ascii && !self.eof {
+        if self.format == RayEncoding::Ascii && !self.eof {
             // Six numbers of the current line at once (the usual case: one ray a line).
             if self.at == self.words.len() {
                 self.next_line()?;
@@ -815,16 +819,16 @@ impl<R: BufRead> RayReader<R> {
         }
         let r = match self.format {
             // Refused by the option parser: nothing to read.
-            Format::Color => None,
-            Format::Ascii => self.next_word(),
-            Format::Float => {
+            RayEncoding::Color => None,
+            RayEncoding::Ascii => self.next_word(),
+            RayEncoding::Float => {
                 let mut b = [0u8; 4];
                 self.input
                     .read_exact(&mut b)
                     .ok()
                     .map(|_| f64::from(f32::from_ne_bytes(b)))
             }
-            Format::Double => {
+            RayEncoding::Double => {
                 let mut b = [0u8; 8];
                 self.input
                     .read_exact(&mut b)
@@ -878,13 +882,13 @@ impl<R: BufRead> RayReader<R> {
                 self.input.consume(at + 1);
                 return true;
             }
-            if is_space(b) {
+            if is_c_space(b) {
                 at += 1;
                 continue;
             }
             let word = &buf[at..];
             let number = spaced_number(word).or_else(|| {
-                number_prefix(word).filter(|&(_, n)| word.get(n).is_some_and(|&b| is_space(b)))
+                real_prefix(word).filter(|&(_, n)| word.get(n).is_some_and(|&b| is_c_space(b)))
             });
             let Some((x, n)) = number else {
                 break;
@@ -911,9 +915,13 @@ impl<R: BufRead> RayReader<R> {
             return None;
         }
         if self.line.is_ascii() {
-            for w in self.line.split(|&b| is_space(b)).filter(|w| !w.is_empty()) {
+            for w in self
+                .line
+                .split(|&b| is_c_space(b))
+                .filter(|w| !w.is_empty())
+            {
                 // rtrace stops at the first word that is not a number.
-                let Some(x) = radiance_number(w) else {
+                let Some(x) = real_word(w) else {
                     self.words.push(f64::NAN);
                     self.stop = true;
                     break;
@@ -925,7 +933,7 @@ impl<R: BufRead> RayReader<R> {
             // input.
             let line = std::str::from_utf8(&self.line).ok()?;
             for w in line.split_whitespace() {
-                let Some(x) = radiance_number(w.as_bytes()) else {
+                let Some(x) = real_word(w.as_bytes()) else {
                     self.words.push(f64::NAN);
                     self.stop = true;
                     break;
@@ -939,7 +947,7 @@ impl<R: BufRead> RayReader<R> {
 
 fn write_ray(out: &mut OutBuf, r: &RayState, scene: &Scene, a: &Args) {
     // The usual record (`-ov`, text) without the general loop.
-    if a.output == Format::Ascii && a.outputs == [Output::Value] {
+    if a.output == RayEncoding::Ascii && a.outputs == [Output::Value] {
         out.push_numbers(&r.color.to_array());
         out.push_byte(b'\n');
         return;
@@ -985,7 +993,7 @@ fn write_ray(out: &mut OutBuf, r: &RayState, scene: &Scene, a: &Args) {
             Output::LocalCoordinates => put(out, a.output, &[0.0, 0.0]),
         }
     }
-    if a.output == Format::Ascii {
+    if a.output == RayEncoding::Ascii {
         out.push_byte(b'\n');
     }
 }
@@ -1009,12 +1017,12 @@ fn names<'s>(r: &RayState, scene: &'s Scene, o: Output) -> &'s str {
     }
 }
 
-fn put(out: &mut OutBuf, f: Format, v: &[f64]) {
+fn put(out: &mut OutBuf, f: RayEncoding, v: &[f64]) {
     match f {
-        Format::Ascii => out.push_numbers(v),
-        Format::Float => v.iter().for_each(|x| out.push(&(*x as f32).to_ne_bytes())),
-        Format::Double => v.iter().for_each(|x| out.push(&x.to_ne_bytes())),
-        Format::Color => {
+        RayEncoding::Ascii => out.push_numbers(v),
+        RayEncoding::Float => v.iter().for_each(|x| out.push(&(*x as f32).to_ne_bytes())),
+        RayEncoding::Double => v.iter().for_each(|x| out.push(&x.to_ne_bytes())),
+        RayEncoding::Color => {
             if let [r, g, b] = v {
                 out.push(&picture::rgbe(Vec3::new(*r, *g, *b)));
             }
@@ -1041,7 +1049,8 @@ mod tests {
         fast: bool,
         n: usize,
     ) -> Vec<(Vec<[u64; 6]>, bool, bool)> {
-        let mut reader = RayReader::new(BufReader::with_capacity(capacity, text), Format::Ascii);
+        let mut reader =
+            RayReader::new(BufReader::with_capacity(capacity, text), RayEncoding::Ascii);
         reader.fast = fast;
         let mut rays = Vec::new();
         let mut batches = Vec::new();
@@ -1170,7 +1179,7 @@ mod tests {
     fn usual_lines_are_scanned_in_place() {
         let text =
             b"10.925434 13.039251 1.057157 -0.46798942 0.81813978 -0.33411556\n1 2 3 0 0 1\n";
-        let mut reader = RayReader::new(BufReader::new(&text[..]), Format::Ascii);
+        let mut reader = RayReader::new(BufReader::new(&text[..]), RayEncoding::Ascii);
         assert!(reader.scan_line());
         assert_eq!(reader.words.len(), 6);
         assert_eq!(reader.words[3], -0.46798942);
@@ -1179,7 +1188,7 @@ mod tests {
         assert_eq!(reader.words, [1.0, 2.0, 3.0, 0.0, 0.0, 1.0]);
         reader.words.clear();
         for text in [&b"1 2 abc\n"[..], b"1 2\xc2\xa0 3\n", b"1 2 3"] {
-            let mut reader = RayReader::new(BufReader::new(text), Format::Ascii);
+            let mut reader = RayReader::new(BufReader::new(text), RayEncoding::Ascii);
             assert!(!reader.scan_line(), "{text:?}");
             assert!(reader.words.is_empty());
         }

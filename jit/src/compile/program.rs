@@ -5,6 +5,7 @@
 //! as one (`$*`, [`super::Compiled::eval_outputs`]).
 
 use super::{Compiled, Context, Entry, Jit, JitError};
+use crate::engine::RecordNumbering;
 use crate::interp::{Error, Outputs, Record};
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{Input, MathErrors, NoInput, Warning};
@@ -43,8 +44,7 @@ pub struct JitProgram {
     fields: Vec<Entry>,
     recno: Option<usize>,
     outno: Option<usize>,
-    nrecs: u64,
-    nout: u64,
+    numbering: RecordNumbering,
     partial: Outputs,
 }
 
@@ -114,8 +114,7 @@ impl JitProgram {
             outputs,
             values: Vec::new(),
             fields,
-            nrecs: 0,
-            nout: 0,
+            numbering: RecordNumbering::default(),
             partial: Vec::new(),
         })
     }
@@ -135,8 +134,7 @@ impl JitProgram {
             fields: self.fields.clone(),
             recno: self.recno,
             outno: self.outno,
-            nrecs: 0,
-            nout: 0,
+            numbering: RecordNumbering::default(),
             partial: Vec::new(),
         }
     }
@@ -154,13 +152,12 @@ impl JitProgram {
 
     /// A new input file: rcalc numbers records (`recno`, `outno`) from 1 in each.
     pub fn start_file(&mut self) {
-        self.nrecs = 0;
-        self.nout = 0;
+        self.numbering.start_file();
     }
 
     /// Number the next record `n + 1` (`recno`), as if `n` records came before.
     pub fn set_records_before(&mut self, n: u64) {
-        self.nrecs = n;
+        self.numbering.set_records_before(n);
     }
 
     /// Start rcalc's single `-n` record.
@@ -178,26 +175,24 @@ impl JitProgram {
 
     /// As [`crate::Interpreter::begin_record`].
     pub fn begin_record(&mut self, input: &mut dyn Input) -> Result<bool, Error> {
-        self.nrecs += 1;
+        let n = self.numbering.begin();
         if let Some(k) = self.recno {
-            self.ctx.set_host(k, self.nrecs as f64);
+            self.ctx.set_host(k, n.recno);
         }
         if let Some(k) = self.outno {
-            self.ctx.set_host(k, (self.nout + 1) as f64);
+            self.ctx.set_host(k, n.outno);
         }
         self.ctx.next_record();
-        // `varvalue("cond") > 0.0` accepts: a NaN cond rejects the record.
-        if let Some(c) = self.cond
-            && self
-                .compiled
-                .eval(c, &mut self.ctx, input)?
-                .partial_cmp(&0.0)
-                != Some(std::cmp::Ordering::Greater)
-        {
-            return Ok(false);
+        match self.cond {
+            Some(c) => {
+                let cond = self.compiled.eval(c, &mut self.ctx, input)?;
+                Ok(self.numbering.accept(cond))
+            }
+            None => {
+                self.numbering.accept_all();
+                Ok(true)
+            }
         }
-        self.nout += 1;
-        Ok(true)
     }
 
     /// Set a variable named to [`JitProgram::with_fields`] for this record; false if

@@ -6,9 +6,10 @@
 mod columns;
 mod format;
 
-pub use columns::{Record, c_atof};
-pub use format::{format_g, format_outputs, write_g9, write_outputs};
+pub use columns::Record;
+pub use format::{format_outputs, write_outputs};
 
+use crate::engine::RecordNumbering;
 use radc_lang::cal::Module;
 use radc_lang::cal::eval::{EvalError, Evaluator, Input, MathErrors, NoInput, Warning};
 use radc_lang::cal::ir::DefId;
@@ -54,8 +55,7 @@ pub struct Interpreter<'m> {
     cond: Option<radc_lang::cal::ir::SymId>,
     recno: Option<DefId>,
     outno: Option<DefId>,
-    nrecs: u64,
-    nout: u64,
+    numbering: RecordNumbering,
     partial: Outputs,
     /// Expressions evaluated on request by [`Interpreter::field`].
     fields: Vec<&'m Expr>,
@@ -90,8 +90,7 @@ impl<'m> Interpreter<'m> {
             cond,
             recno: var("recno"),
             outno: var("outno"),
-            nrecs: 0,
-            nout: 0,
+            numbering: RecordNumbering::default(),
             partial: Vec::new(),
             fields: Vec::new(),
         })
@@ -122,13 +121,12 @@ impl<'m> Interpreter<'m> {
 
     /// A new input file: rcalc numbers records (`recno`, `outno`) from 1 in each.
     pub fn start_file(&mut self) {
-        self.nrecs = 0;
-        self.nout = 0;
+        self.numbering.start_file();
     }
 
     /// Number the next record `n + 1` (`recno`), as if `n` records came before.
     pub fn set_records_before(&mut self, n: u64) {
-        self.nrecs = n;
+        self.numbering.set_records_before(n);
     }
 
     /// Start rcalc's single `-n` record, for callers that evaluate their own
@@ -148,22 +146,24 @@ impl<'m> Interpreter<'m> {
     /// Start a record (rcalc.c `execute`): set `recno`/`outno`, expire `=` values and
     /// test `cond`. `false` when the record is filtered out.
     pub fn begin_record(&mut self, record: &mut dyn Input) -> Result<bool, Error> {
-        self.nrecs += 1;
+        let n = self.numbering.begin();
         if let Some(d) = self.recno {
-            self.ev.set_value(d, self.nrecs as f64);
+            self.ev.set_value(d, n.recno);
         }
         if let Some(d) = self.outno {
-            self.ev.set_value(d, (self.nout + 1) as f64);
+            self.ev.set_value(d, n.outno);
         }
         self.ev.next_record();
-        // `varvalue("cond") > 0.0` accepts: a NaN cond rejects the record.
-        if let Some(c) = self.cond
-            && self.ev.variable(c, record)?.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
-        {
-            return Ok(false);
+        match self.cond {
+            Some(c) => {
+                let cond = self.ev.variable(c, record)?;
+                Ok(self.numbering.accept(cond))
+            }
+            None => {
+                self.numbering.accept_all();
+                Ok(true)
+            }
         }
-        self.nout += 1;
-        Ok(true)
     }
 
     /// Set a variable for this record as rcalc's `varset(name, '=', v)` does for an

@@ -33,10 +33,8 @@ pub struct Token<'src> {
     pub line_start: bool,
 }
 
-/// The whitespace `fgetword` skips (C `isspace` in the C locale).
-const fn is_space(b: u8) -> bool {
-    matches!(b, b' ' | b'\t' | b'\r' | b'\n' | 0x0b | 0x0c)
-}
+// The whitespace `fgetword` skips: C `isspace` in the C locale.
+use crate::c_number::is_c_space as is_space;
 
 /// Ends an unquoted run inside a word: whitespace or the start of a quoted segment.
 static WORD_STOP: [bool; 256] = {

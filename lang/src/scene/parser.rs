@@ -246,80 +246,10 @@ pub(super) fn parse_count(s: &str) -> Option<u32> {
 }
 
 /// Radiance's real syntax (`isflt`): `[+-](digits[.digits]|.digits)[(e|E)[+-]digits]`,
-/// where the digits after a point may be absent (`5.`). No `inf`, `nan` or hex.
+/// where the digits after a point may be absent (`5.`). No `inf`, `nan` or hex. The
+/// definition is [`crate::c_number::real_word`]'s.
 pub fn parse_real(s: &str) -> Option<f64> {
-    let b = s.as_bytes();
-    let negative = b.first() == Some(&b'-');
-    let mut i = usize::from(matches!(b.first(), Some(b'+' | b'-')));
-    // The decimal digits as an integer and the power of ten that scales them, for the
-    // exact fast path below (the integer is only used when it cannot have wrapped).
-    let mut mantissa: u64 = 0;
-    let int_start = i;
-    i = digits(b, i, &mut mantissa);
-    let mut mantissa_digits = i - int_start;
-    let mut scale: i64 = 0;
-    if b.get(i) == Some(&b'.') {
-        let frac_start = i + 1;
-        i = digits(b, frac_start, &mut mantissa);
-        mantissa_digits += i - frac_start;
-        scale = -((i - frac_start) as i64);
-    }
-    if mantissa_digits == 0 {
-        return None;
-    }
-    if matches!(b.get(i), Some(b'e' | b'E')) {
-        i += 1;
-        let exp_negative = b.get(i) == Some(&b'-');
-        if matches!(b.get(i), Some(b'+' | b'-')) {
-            i += 1;
-        }
-        let exp_start = i;
-        let mut exp: i64 = 0;
-        while let Some(&d) = b.get(i)
-            && d.is_ascii_digit()
-        {
-            exp = exp.saturating_mul(10).saturating_add(i64::from(d - b'0'));
-            i += 1;
-        }
-        if i == exp_start {
-            return None;
-        }
-        scale = scale.saturating_add(if exp_negative { -exp } else { exp });
-    }
-    if i != b.len() {
-        return None;
-    }
-    // Clinger's fast path: an integer below 2^53 and a power of ten up to 10^22 are
-    // both exact in f64, so one multiplication or division rounds correctly, giving
-    // the same value as the full conversion. 19 digits cannot overflow a u64.
-    if mantissa_digits <= 19 && mantissa < (1 << 53) && (-22..=22).contains(&scale) {
-        const POW10: [f64; 23] = [
-            1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-        ];
-        let m = mantissa as f64;
-        let v = if scale >= 0 {
-            m * POW10[scale as usize]
-        } else {
-            m / POW10[(-scale) as usize]
-        };
-        return Some(if negative { -v } else { v });
-    }
-    s.parse::<f64>().ok()
-}
-
-/// Reads decimal digits from `i` into `mantissa` (wrapping past 19 digits, when the
-/// caller no longer uses it) and returns where they end.
-fn digits(b: &[u8], mut i: usize, mantissa: &mut u64) -> usize {
-    while let Some(&c) = b.get(i) {
-        let d = c.wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        *mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
-        i += 1;
-    }
-    i
+    crate::c_number::real_word(s.as_bytes())
 }
 
 /// A word in a position where Radiance calls `fgetword`. A `#`/`!` token is only a

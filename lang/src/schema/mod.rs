@@ -401,6 +401,11 @@ pub struct PrimitiveType {
     /// The keyword as written in scenes (case-sensitive).
     pub name: &'static str,
     pub category: Category,
+    /// The type of the same surface with its normal reversed (sphere and bubble, cone
+    /// and cup, cylinder and tube), which xform writes under `-I` and for mirroring
+    /// transforms (`initotypes` in xform.c); `None` where the arguments turn it inside
+    /// out instead (a polygon's vertex order, a ring's normal) or nothing does.
+    pub inverse: Option<&'static str>,
     /// One line for completion lists.
     pub summary: &'static str,
     /// A paragraph for hover and docs.

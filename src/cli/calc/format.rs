@@ -2,7 +2,7 @@
 //! text, `${expr}` numbers and `$(name)` string variables, laid out in the width the
 //! field takes in the format itself.
 
-use radc_jit::interp::format_g;
+use radc_lang::c_number::{format_e, format_g};
 
 /// One field of an output format.
 #[derive(Clone, Debug, PartialEq)]
@@ -97,33 +97,12 @@ enum NumberType {
     Fixed0,
 }
 
-fn c_nonfinite(v: f64) -> Option<String> {
-    if v.is_nan() {
-        Some(if v.is_sign_negative() { "-nan" } else { "nan" }.into())
-    } else if v.is_infinite() {
-        Some(if v < 0.0 { "-inf" } else { "inf" }.into())
-    } else {
-        None
-    }
-}
-
-/// C's `%.{p}e`.
-fn format_e(v: f64, p: usize) -> String {
-    if let Some(s) = c_nonfinite(v) {
-        return s;
-    }
-    let s = format!("{v:.p$e}");
-    let (m, e) = s.split_once('e').unwrap_or((s.as_str(), "0"));
-    let x: i32 = e.parse().unwrap_or(0);
-    let sign = if x < 0 { '-' } else { '+' };
-    format!("{m}e{sign}{:02}", x.unsigned_abs())
-}
-
 fn format_number(v: f64, t: &NumberType) -> String {
     match t {
         NumberType::G => format_g(v, 6),
         NumberType::E(p) => format_e(v, *p),
-        NumberType::Fixed0 => c_nonfinite(v).unwrap_or_else(|| format!("{v:.0}")),
+        // Only finite values below 2^31 are printed so (`number_type`).
+        NumberType::Fixed0 => format!("{v:.0}"),
     }
 }
 

@@ -4,7 +4,7 @@
 //! the rest of that line) and matching starts again.
 
 use super::format::Field;
-use radc_jit::interp::c_atof;
+use radc_lang::c_number::{is_c_space, strtod};
 use std::collections::HashMap;
 
 /// A matched record: number and string variables.
@@ -32,7 +32,7 @@ pub struct Matcher<'a> {
 /// rcalc.c `isblnk`: space and tab, or any white space under `-l`.
 fn blank(c: u8, ignore_eol: bool) -> bool {
     if ignore_eol {
-        matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0b | 0x0c)
+        is_c_space(c)
     } else {
         c == b' ' || c == b'\t'
     }
@@ -196,7 +196,7 @@ impl<'a> Matcher<'a> {
             pos += 1;
         }
         let d = match start {
-            Some(s) => c_atof(&String::from_utf8_lossy(&word[s..])).0,
+            Some(s) => strtod(&word[s..]).value,
             None => 0.0,
         };
         match m.numbers.iter().find(|(n, _)| n == name) {

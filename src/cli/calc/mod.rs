@@ -11,24 +11,27 @@ mod input_format;
 mod parallel;
 
 use super::USAGE_ERROR;
+use super::report::{self, Sources};
 use format::{Field, Value};
 use radc_jit::compile::StartError;
 use radc_jit::interp::{Interpreter, Outputs, Record, format_outputs, write_outputs};
 use radc_jit::{JitProgram, RecordEngine};
+use radc_lang::Diagnostic;
 use radc_lang::cal::eval::MathErrors;
 use radc_lang::cal::ir::Expr;
 use radc_lang::cal::{Env, Host, Module};
-use radc_lang::{Diagnostic, FileId};
+use radc_lang::schema::FileKind;
+use radc_lang::search_path::{Found, Policy, SearchPath};
 use std::collections::HashMap;
 use std::io::{BufRead, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
 const USAGE: &str = "usage: radc calc [--interp][--threads N][-n][-w][-u][-tS][-s svar=sval][-e expr][-f source][-i{a|d|f}[N]][-o{a|d|f}][-in N][-on N] [file ..]";
 
 /// Binary or text records (rcalc's `-id`, `-if`, `-od`, `-of`).
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Format {
+enum RecordEncoding {
     Ascii,
     Double { swap: bool },
     Float { swap: bool },
@@ -39,9 +42,9 @@ struct Options {
     nowarn: bool,
     unbuffered: bool,
     sep: char,
-    itype: Format,
+    itype: RecordEncoding,
     in_cols: usize,
-    otype: Format,
+    otype: RecordEncoding,
     in_limit: u64,
     out_limit: u64,
     files: Vec<String>,
@@ -70,31 +73,22 @@ enum Passive {
     AlsoRejected,
 }
 
-/// The texts compiled so far, by `FileId`, for rendering diagnostics.
-struct Sources {
-    names: Vec<String>,
-    texts: Vec<String>,
-}
-
 pub fn run(args: &[String]) -> ExitCode {
     let mut module = Module::new(&Env {
         host: Host::Rcalc,
         fold: true,
         complete: true,
     });
-    let mut sources = Sources {
-        names: Vec::new(),
-        texts: Vec::new(),
-    };
+    let mut sources = Sources::default();
     let mut diags: Vec<Diagnostic> = Vec::new();
     let mut o = Options {
         noinput: false,
         nowarn: false,
         unbuffered: false,
         sep: '\t',
-        itype: Format::Ascii,
+        itype: RecordEncoding::Ascii,
         in_cols: 0,
-        otype: Format::Ascii,
+        otype: RecordEncoding::Ascii,
         in_limit: 0,
         out_limit: 0,
         files: Vec::new(),
@@ -138,8 +132,8 @@ pub fn run(args: &[String]) -> ExitCode {
             },
             "-f" => match value() {
                 Some(name) => match find_on_raypath(&name) {
-                    Some(path) if path.is_dir() => {}
-                    Some(path) => match std::fs::read(&path) {
+                    Some(Found::File(path, ())) if path.is_dir() => {}
+                    Some(Found::File(path, ())) => match std::fs::read(&path) {
                         Ok(bytes) => {
                             let text = String::from_utf8_lossy(&bytes).into_owned();
                             add(&mut module, &mut sources, &mut diags, name, text);
@@ -151,16 +145,14 @@ pub fn run(args: &[String]) -> ExitCode {
                     },
                     // As the renderer does, radc's own library answers for a file
                     // that no RAYPATH folder holds (`-f rayinit.cal`).
-                    None => match radc_lang::library::builtin(&name) {
-                        Some(text) => {
-                            let shown = format!("{name} (built into radc)");
-                            add(&mut module, &mut sources, &mut diags, shown, text.into());
-                        }
-                        None => {
-                            eprintln!("radc calc: cannot find file '{name}' (searched RAYPATH)");
-                            return ExitCode::FAILURE;
-                        }
-                    },
+                    Some(Found::Builtin(text)) => {
+                        let shown = format!("{name} (built into radc)");
+                        add(&mut module, &mut sources, &mut diags, shown, text.into());
+                    }
+                    None => {
+                        eprintln!("radc calc: cannot find file '{name}' (searched RAYPATH)");
+                        return ExitCode::FAILURE;
+                    }
                 },
                 None => return usage("-f needs a file name"),
             },
@@ -178,7 +170,7 @@ pub fn run(args: &[String]) -> ExitCode {
                     match compile_format(&mut module, &mut sources, &mut diags, &spec, o.ignore_eol)
                     {
                         Ok(f) => {
-                            o.otype = Format::Ascii;
+                            o.otype = RecordEncoding::Ascii;
                             o.record_format = Some(f);
                         }
                         Err(code) => return code,
@@ -194,7 +186,7 @@ pub fn run(args: &[String]) -> ExitCode {
                     })
                 }) {
                     Ok(fields) => {
-                        o.itype = Format::Ascii;
+                        o.itype = RecordEncoding::Ascii;
                         o.input_format = Some(fields);
                     }
                     Err(code) => return code,
@@ -229,7 +221,7 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     o.files = args[i..].to_vec();
     if !diags.is_empty() {
-        render(&sources, &diags);
+        report::eprint(&diags, &sources);
     }
     if diags.iter().any(Diagnostic::is_error) {
         return ExitCode::FAILURE;
@@ -310,9 +302,7 @@ fn compile_format(
     for f in &fields {
         exprs.push(match f {
             Field::Number { expr, .. } => {
-                let file = FileId(sources.texts.len() as u32);
-                sources.names.push("-o".into());
-                sources.texts.push(expr.clone());
+                let file = sources.add("-o".into(), expr.clone());
                 match module.add_expression(file, expr) {
                     Ok(e) => Some(e),
                     Err(d) => {
@@ -328,13 +318,11 @@ fn compile_format(
 }
 
 fn add(m: &mut Module, s: &mut Sources, diags: &mut Vec<Diagnostic>, name: String, text: String) {
-    let file = FileId(s.texts.len() as u32);
-    diags.extend(m.add_source(file, &text));
-    s.names.push(name);
-    s.texts.push(text);
+    diags.extend(m.add_source(s.next_id(), &text));
+    s.add(name, text);
 }
 
-fn parse_format(spec: &str) -> Option<(Format, usize)> {
+fn parse_format(spec: &str) -> Option<(RecordEncoding, usize)> {
     let mut chars = spec.chars();
     let kind = chars.next()?;
     let rest: String = chars.collect();
@@ -344,11 +332,11 @@ fn parse_format(spec: &str) -> Option<(Format, usize)> {
         rest.parse().ok()?
     };
     let f = match kind {
-        'a' => Format::Ascii,
-        'd' => Format::Double { swap: false },
-        'D' => Format::Double { swap: true },
-        'f' => Format::Float { swap: false },
-        'F' => Format::Float { swap: true },
+        'a' => RecordEncoding::Ascii,
+        'd' => RecordEncoding::Double { swap: false },
+        'D' => RecordEncoding::Double { swap: true },
+        'f' => RecordEncoding::Float { swap: false },
+        'F' => RecordEncoding::Float { swap: true },
         _ => return None,
     };
     Some((f, cols))
@@ -359,19 +347,16 @@ fn usage(why: &str) -> ExitCode {
     ExitCode::from(USAGE_ERROR)
 }
 
-/// rcalc's `getpath` with `getrlibpath`: absolute and `./` names as given, others
-/// searched in each RAYPATH directory (the current one if RAYPATH is unset).
-/// A directory is found too, as `getpath` does: `-f .` then reads nothing.
-fn find_on_raypath(name: &str) -> Option<PathBuf> {
-    let p = Path::new(name);
-    if p.is_absolute() || name.starts_with("./") || name.starts_with("../") || name == "." {
-        return p.exists().then(|| p.to_path_buf());
-    }
-    let raypath = std::env::var("RAYPATH").unwrap_or_else(|_| ".".into());
-    raypath
-        .split(':')
-        .map(|d| Path::new(if d.is_empty() { "." } else { d }).join(name))
-        .find(|c| c.exists())
+/// rcalc's `getpath` with `getrlibpath` (`Policy::Getpath`), then radc's library. A
+/// directory is found too, as `getpath` does: `-f .` then reads nothing.
+fn find_on_raypath(name: &str) -> Option<Found<()>> {
+    let raypath = std::env::var_os("RAYPATH");
+    SearchPath::new(Policy::Getpath, raypath.as_deref()).lookup(
+        name,
+        FileKind::Cal,
+        None,
+        Path::exists,
+    )
 }
 
 /// Native stack the JIT's code may use on the evaluation thread (of 512 MiB).
@@ -521,7 +506,11 @@ fn run_stream<E: RecordEngine>(
     }
     let mut nrecs = 0u64;
     let mut nout = 0u64;
-    let sep = if o.itype == Format::Ascii { o.sep } else { ' ' };
+    let sep = if o.itype == RecordEncoding::Ascii {
+        o.sep
+    } else {
+        ' '
+    };
     let mut one = |line: &[u8], engine: &mut E, scratch: &mut Scratch| -> Result<bool, Stop> {
         nrecs += 1;
         let mut record = Record::from_bytes(line, sep);
@@ -536,7 +525,7 @@ fn run_stream<E: RecordEngine>(
     // where they lie.
     let mut line = Vec::with_capacity(256);
     loop {
-        if o.itype != Format::Ascii {
+        if o.itype != RecordEncoding::Ascii {
             line.clear();
             if !read_binary(input, o.itype, o.in_cols, &mut line) || !one(&line, engine, scratch)? {
                 return Ok(());
@@ -626,11 +615,16 @@ fn run_matched<E: RecordEngine>(
 
 /// Binary input records are turned into blank-separated text with full precision
 /// (into `text`), so one record reader serves both. False at the end of the input.
-fn read_binary(input: &mut dyn BufRead, f: Format, cols: usize, text: &mut Vec<u8>) -> bool {
+fn read_binary(
+    input: &mut dyn BufRead,
+    f: RecordEncoding,
+    cols: usize,
+    text: &mut Vec<u8>,
+) -> bool {
     let (size, swap) = match f {
-        Format::Double { swap } => (8, swap),
-        Format::Float { swap } => (4, swap),
-        Format::Ascii => return false,
+        RecordEncoding::Double { swap } => (8, swap),
+        RecordEncoding::Float { swap } => (4, swap),
+        RecordEncoding::Ascii => return false,
     };
     let mut buf = [0u8; 8];
     for _ in 0..cols.max(1) {
@@ -682,7 +676,7 @@ fn produce<E: RecordEngine>(
     let Some((fields, exprs)) = &o.record_format else {
         engine.outputs_into(input, &mut scratch.columns)?;
         match o.otype {
-            Format::Ascii => write_outputs(&mut scratch.bytes, &scratch.columns, o.sep),
+            RecordEncoding::Ascii => write_outputs(&mut scratch.bytes, &scratch.columns, o.sep),
             binary => binary_record(&mut scratch.bytes, &scratch.columns, binary),
         }
         return Ok(());
@@ -758,7 +752,7 @@ fn emit<E: RecordEngine>(
 }
 
 /// rcalc.c `bchanset`: missing columns are written as zeros.
-fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: Format) {
+fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: RecordEncoding) {
     let mut col = 0u32;
     for &(n, v) in values {
         col += 1;
@@ -770,9 +764,9 @@ fn binary_record(bytes: &mut Vec<u8>, values: &[(u32, f64)], f: Format) {
     }
 }
 
-fn encode(bytes: &mut Vec<u8>, v: f64, f: Format) {
+fn encode(bytes: &mut Vec<u8>, v: f64, f: RecordEncoding) {
     let (mut word, len) = match f {
-        Format::Double { .. } => (v.to_ne_bytes(), 8),
+        RecordEncoding::Double { .. } => (v.to_ne_bytes(), 8),
         _ => {
             let mut w = [0u8; 8];
             w[..4].copy_from_slice(&(v as f32).to_ne_bytes());
@@ -782,51 +776,9 @@ fn encode(bytes: &mut Vec<u8>, v: f64, f: Format) {
     let word = &mut word[..len];
     if matches!(
         f,
-        Format::Double { swap: true } | Format::Float { swap: true }
+        RecordEncoding::Double { swap: true } | RecordEncoding::Float { swap: true }
     ) {
         word.reverse();
     }
     bytes.extend_from_slice(word);
-}
-
-fn render(sources: &Sources, diags: &[Diagnostic]) {
-    use ariadne::{Config, IndexType, Label, Report, ReportKind, Source};
-    for d in diags {
-        let file = d.span.file.0 as usize;
-        let (Some(name), Some(text)) = (sources.names.get(file), sources.texts.get(file)) else {
-            eprintln!("{}: {}", d.code.id, d.message);
-            continue;
-        };
-        let kind = if d.is_error() {
-            ReportKind::Error
-        } else {
-            ReportKind::Warning
-        };
-        let id = name.as_str();
-        let mut report = Report::build(kind, (id, d.span.range()))
-            .with_config(
-                Config::new()
-                    .with_index_type(IndexType::Byte)
-                    .with_color(false),
-            )
-            .with_code(d.code.id)
-            .with_message(&d.message)
-            .with_label(Label::new((id, d.span.range())).with_message(&d.message));
-        for l in &d.labels {
-            report = report.with_label(Label::new((id, l.span.range())).with_message(&l.message));
-        }
-        if let Some(h) = &d.hint {
-            report = report.with_help(h);
-        }
-        let mut buf = Vec::new();
-        if report
-            .finish()
-            .write((id, Source::from(text.as_str())), &mut buf)
-            .is_ok()
-        {
-            let _ = std::io::stderr().write_all(&buf);
-        } else {
-            eprintln!("{}: {}", d.code.id, d.message);
-        }
-    }
 }

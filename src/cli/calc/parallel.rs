@@ -9,7 +9,7 @@
 //! reaching any of these, and runs whose order of reading matters (`-u`, `-in`,
 //! `-on`, input formats, `-p`, binary input, a terminal), stay on one thread.
 
-use super::{Format, Options, Passive, Scratch, Stop, evaluate};
+use super::{Options, Passive, RecordEncoding, Scratch, Stop, evaluate};
 use radc_jit::RecordEngine;
 use radc_jit::interp::{Record, format_outputs};
 use radc_lang::cal::Module;
@@ -36,7 +36,7 @@ pub(super) fn threads_for(module: &Module, o: &Options) -> usize {
         && o.out_limit == 0
         && o.input_format.is_none()
         && o.passive == Passive::Off
-        && o.itype == Format::Ascii
+        && o.itype == RecordEncoding::Ascii
         && (!o.files.is_empty() || !std::io::stdin().is_terminal())
         && !std::io::stdout().is_terminal();
     if wanted <= 1 || !run_allows || !records_are_independent(module, o) {
