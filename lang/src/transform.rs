@@ -59,7 +59,12 @@ impl Transform {
 
     /// Parses a whole transform: every word must belong to it.
     pub fn parse(words: &[(&str, Span)]) -> Result<Transform, Diagnostic> {
-        let (xf, used) = Transform::parse_prefix(words)?;
+        Transform::parse_whole(words, Direction::Forward)
+    }
+
+    /// Every word must belong to the transform read in `direction`.
+    fn parse_whole(words: &[(&str, Span)], direction: Direction) -> Result<Transform, Diagnostic> {
+        let (xf, used) = Transform::parse_prefix_as(words, direction)?;
         match words.get(used) {
             None => Ok(xf),
             Some((w, span)) => Err(Diagnostic::new(
@@ -84,16 +89,7 @@ impl Transform {
     /// the renderer maps hit points into a function's coordinates with it, and the
     /// last bits must be Radiance's. `scale` is its factor, negative if mirrored.
     pub fn parse_inverse(words: &[(&str, Span)]) -> Result<Transform, Diagnostic> {
-        let (xf, used) = Transform::parse_prefix_as(words, Direction::Inverse)?;
-        match words.get(used) {
-            None => Ok(xf),
-            Some((w, span)) => Err(Diagnostic::new(
-                diagnostic::E0801,
-                *span,
-                format!("'{w}' is not a transform option"),
-            )
-            .with_hint(OPTIONS_HINT)),
-        }
+        Transform::parse_whole(words, Direction::Inverse)
     }
 
     fn parse_prefix_as(
@@ -418,6 +414,25 @@ fn is_integer_strict(s: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// invxf's inverse undoes xf's transform (to rounding), repetitions included.
+    #[test]
+    fn inverse_undoes_the_transform() {
+        let words = [
+            "-rz", "30", "-t", ".2", "1", "-3", "-s", "2.5", "-i", "3", "-rx", "10", "-my",
+        ];
+        let spanned: Vec<(&str, Span)> = words.iter().map(|w| (*w, Span::default())).collect();
+        let (f, i) = (
+            Transform::parse(&spanned).expect("valid"),
+            Transform::parse_inverse(&spanned).expect("valid"),
+        );
+        let p = [0.3, -1.7, 2.2];
+        let back = i.point(f.point(p));
+        for (a, b) in back.iter().zip(p) {
+            assert!((a - b).abs() < 1e-12, "{back:?} vs {p:?}");
+        }
+        assert!((f.scale * i.scale - 1.0).abs() < 1e-15);
+    }
     use crate::source::FileId;
 
     /// Words with spans as if the words were joined by single spaces.
