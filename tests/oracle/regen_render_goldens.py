@@ -41,6 +41,10 @@ CASES = [
     ("room-view-file", "polygon_lamp.rad", "-vf tests/data/render/corner.vf -x 32 -y 32", "-av .1 .1 .1"),
     ("small-mirrored", "mirrors.rad", "-vp 0 -40 1.5 -vd 0 1 0 -vh 12 -vv 8 -x 24 -y 16", "-dr 2"),
     ("emitters-relay", "emitters.rad", "-vp 2 0 1.2 -vd -1 0 -.4 -vh 40 -vv 40 -x 40 -y 40", "-dr 1"),
+    # the scene's functions: patterns, noise, textures, a level view of a daylit window
+    ("patterns", "patterns.rad", "-vp 0 -4.5 2 -vd 0 1 -.35 -vh 70 -vv 55 -x 48 -y 40", "-av .05 .05 .05"),
+    ("textures", "textures.rad", "-vp 0 -4.5 2 -vd 0 1 -.35 -vh 70 -vv 55 -x 48 -y 40", "-av .05 .05 .05"),
+    ("daylight", "daylight.rad", "-vp 2 4 1.75 -vd 0 -1 0 -vu 0 0 1 -vh 60 -vv 45 -x 40 -y 30", "-av .05 .05 .05"),
 ]
 
 
@@ -52,7 +56,9 @@ def render(case, out_path):
         with open(octree, "wb") as f:
             subprocess.run(["oconv", os.path.join(SCENES, scene)], stdout=f, check=True)
         with open(out_path, "wb") as f:
-            subprocess.run(["rpict"] + DETERMINISTIC + view.split() + light.split() + [octree], stdout=f, check=True)
+            # function files (patterns.cal, ...) are found beside the scenes
+            subprocess.run(["rpict"] + DETERMINISTIC + view.split() + light.split() + [octree],
+                           stdout=f, check=True, cwd=SCENES)
 
 
 def pixels(path):
