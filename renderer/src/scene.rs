@@ -547,7 +547,7 @@ impl Compiler<'_> {
                         self.path.truncate(depth);
                         return (None, String::new());
                     };
-                    prefix.push((i, p.schema.name == "texfunc"));
+                    prefix.push((i, p.schema.name == "texfunc", m));
                     self.path.push(m);
                     next = match p.modifier {
                         ModRef::Prim(n) => Some(n),
@@ -583,38 +583,15 @@ impl Compiler<'_> {
         let Some(material) = self.scene.material(base).cloned() else {
             return (None, name);
         };
-        let textures_fit = matches!(&material, Material::Normal(n) if n.transmission.is_none());
-        let patterns_fit = matches!(material, Material::Normal(_) | Material::Emitter(_));
-        if let Some(&(i, texture)) = prefix.iter().find(|(_, texture)| {
-            if *texture {
-                !textures_fit
-            } else {
-                !patterns_fit
-            }
-        }) {
-            let who = self
-                .functions
-                .patterns
-                .get(i as usize)
-                .map(|p| p.who.clone());
-            let id = self
-                .pattern_of_prim
-                .iter()
-                .find(|(_, v)| **v == i)
-                .map(|(k, _)| *k);
-            if let (Some(id), Some(_)) = (id, who) {
-                self.unsupported(
-                    id,
-                    if texture {
-                        "textures on this material type are not rendered yet"
-                    } else {
-                        "patterns on this material type are not rendered yet"
-                    },
-                );
-            }
+        let kind = self.alias_target(target).unwrap_or(target);
+        if let Some(&(_, texture, m)) = prefix
+            .iter()
+            .find(|(_, texture, _)| !self.takes_modifier(kind, *texture))
+        {
+            self.unsupported(m, refused_on(texture));
             return (None, name);
         }
-        let mut patterns: Vec<u32> = prefix.iter().map(|(i, _)| *i).collect();
+        let mut patterns: Vec<u32> = prefix.iter().map(|(i, _, _)| *i).collect();
         if let Some(own) = self.material_patterns.get(base.0 as usize) {
             patterns.extend(own);
         }
@@ -655,34 +632,15 @@ impl Compiler<'_> {
                 break;
             }
             let Some(p) = self.ir.get(m) else { break };
-            // Textures perturb the normal of plastic and metal (trans bends its
-            // transmitted ray by them too, which is not modelled yet); lights have none.
             let texture = p.schema.name == "texfunc";
-            let takes = self.ir.get(kind).is_some_and(|k| {
-                matches!(k.kind, PrimKind::Plastic { .. } | PrimKind::Metal { .. })
-                    || (!texture && matches!(k.kind, PrimKind::Trans { .. }))
-                    || (!texture
-                        && matches!(
-                            k.kind,
-                            PrimKind::Light { .. }
-                                | PrimKind::Glow { .. }
-                                | PrimKind::Spotlight { .. }
-                        ))
-            });
+            let takes = self.takes_modifier(kind, texture);
             if !is_rendered_pattern(p.schema.name) {
                 self.unsupported(m, not_modelled(p.category()));
                 result = None;
                 break;
             }
             if !takes {
-                self.unsupported(
-                    m,
-                    if texture {
-                        "textures on this material type are not rendered yet"
-                    } else {
-                        "patterns on this material type are not rendered yet"
-                    },
-                );
+                self.unsupported(m, refused_on(texture));
                 result = None;
                 break;
             }
@@ -701,6 +659,20 @@ impl Compiler<'_> {
         }
         self.path.truncate(depth);
         result.map(|()| patterns)
+    }
+
+    /// Whether material `kind` is shaded with patterns (or, `texture`, textures) yet:
+    /// textures perturb the normal of plastic and metal (trans also bends its
+    /// transmitted ray by them, not modelled yet); lights take patterns only.
+    fn takes_modifier(&self, kind: PrimId, texture: bool) -> bool {
+        self.ir.get(kind).is_some_and(|k| match k.kind {
+            PrimKind::Plastic { .. } | PrimKind::Metal { .. } => true,
+            PrimKind::Trans { .. }
+            | PrimKind::Light { .. }
+            | PrimKind::Glow { .. }
+            | PrimKind::Spotlight { .. } => !texture,
+            _ => false,
+        })
     }
 
     /// Compiles pattern primitive `id` (brightfunc, colorfunc, texfunc, brightdata,
@@ -1127,6 +1099,15 @@ fn find_sources(scene: &Scene) -> (Vec<Source>, Vec<usize>) {
 
 /// The patterns and textures the renderer runs (`pattern` compiles them); any other
 /// modifier in a chain is refused by name.
+/// Why a pattern or texture is refused on a material that does not take it.
+fn refused_on(texture: bool) -> &'static str {
+    if texture {
+        "textures on this material type are not rendered yet"
+    } else {
+        "patterns on this material type are not rendered yet"
+    }
+}
+
 fn is_rendered_pattern(name: &str) -> bool {
     matches!(
         name,

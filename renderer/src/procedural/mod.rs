@@ -19,7 +19,6 @@ pub use pattern::{Pattern, PatternKind};
 pub use picture::PictureLookup;
 
 use std::cell::RefCell;
-use std::sync::Arc;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -323,19 +322,15 @@ fn unavailable(module: &Module, e: &Expr) -> Option<String> {
                 return Some(format!("the function {}() is not evaluated yet", r.name));
             }
             Some(_) => {}
-            None if module.host_name(s).is_some() && !is_channel(&sym.name) => {
+            // Ray channels are definitions (`Dx = $1`) and never get here; the
+            // per-shade variables of *func materials (`NxP`, `CrP`, ...) do.
+            None if module.host_name(s).is_some() => {
                 return Some(format!("the variable {} is not set yet", sym.name));
             }
             None => return Some(format!("'{}' is not defined", sym.name)),
         }
     }
     None
-}
-
-/// Ray channels are definitions (`Dx = $1`), so they never get here; the per-shade
-/// variables of *func materials (`NxP`, `CrP`, ...) do.
-fn is_channel(_name: &str) -> bool {
-    false
 }
 
 /// What a function evaluated for one primitive and ray reads: the ray channels, the
@@ -383,6 +378,3 @@ impl Input for RayInput<'_> {
         }
     }
 }
-
-/// Shared handle the compiled scene holds.
-pub type SharedFunctions = Arc<Functions>;
