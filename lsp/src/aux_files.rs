@@ -9,16 +9,14 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use radc_generators::expansion::expansion;
-use radc_generators::{GenError, Host, read_on_path};
 use radc_lang::db::AuxFiles;
 use radc_lang::scene::Expansion;
 use radc_lang::schema::FileKind;
 use radc_lang::search_path::{Found, Policy, SearchPath};
+use radc_loader::generator_host::GeneratorHost;
+use radc_loader::scene_files::MAX_AUX_FILE;
 
 use crate::config::Config;
-
-/// Auxiliary files larger than this are not read for content checks (as in the CLI).
-const MAX_AUX_FILE: u64 = 64 << 20;
 
 pub struct DiskAuxFiles {
     /// `Policy::SceneCurrentRaypath`, as `radc check` searches.
@@ -132,14 +130,11 @@ impl AuxFiles for DiskAuxFiles {
                 reason: "expanding built-in generators is turned off in the settings".into(),
             });
         }
-        let mut host = GeneratorHost {
-            dir: scene_path
-                .parent()
-                .map(Path::to_path_buf)
-                .unwrap_or_default(),
-            search: &self.generator_search,
-            warnings: Vec::new(),
-        };
+        let dir = scene_path
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        let mut host = GeneratorHost::new(dir, &self.generator_search);
         // The database numbers the output's file; `FileId(0)` stands in for it.
         match radc_generators::command::run_builtin(command, &mut host) {
             Some(result) => match expansion(result, &host.warnings, |_| radc_lang::FileId(0)) {
@@ -152,29 +147,5 @@ impl AuxFiles for DiskAuxFiles {
                     .into(),
             }),
         }
-    }
-}
-
-/// Files for generators run from a scene: relative to the scene's folder, then
-/// RAYPATH, then radc's built-in function files. Commands nested in files xform reads are refused (the trait's default).
-struct GeneratorHost<'a> {
-    dir: PathBuf,
-    search: &'a SearchPath,
-    warnings: Vec<String>,
-}
-
-impl Host for GeneratorHost<'_> {
-    fn read_file(&mut self, path: &str) -> Result<String, GenError> {
-        read_on_path(self.search, path, Some(&self.dir), |c| {
-            std::fs::read(c).ok()
-        })
-    }
-
-    fn read_stdin(&mut self) -> Result<String, GenError> {
-        Ok(String::new())
-    }
-
-    fn warn(&mut self, line: &str) {
-        self.warnings.push(line.to_string());
     }
 }

@@ -13,12 +13,14 @@ pub mod procedural;
 pub mod random;
 pub mod ray;
 pub mod ray_order;
+pub mod render;
 pub mod scene;
 pub mod scene_file;
 pub mod shapes;
 pub mod small_sources;
 pub mod solid_angle;
 pub mod surfaces;
+pub mod trace;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};

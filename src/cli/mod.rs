@@ -7,15 +7,15 @@ mod build;
 mod calc;
 mod check;
 mod doc;
-mod expand;
 mod fmt;
 // `gen` is a reserved word in edition 2024, so the file is named for the task and the
 // module for what it does.
 #[path = "gen.rs"]
 mod generate;
+mod load;
 mod lsp;
+mod options;
 mod picture_tools;
-mod ray_text;
 mod render;
 mod report;
 mod trace;

@@ -11,13 +11,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use radc_renderer::camera::{Camera, View};
+use radc_renderer::camera::View;
 use radc_renderer::math::Color;
-use radc_renderer::{Options, Target, Tracer, picture};
-use rayon::prelude::*;
+use radc_renderer::render::{inside_geometry, render_picture};
+use radc_renderer::{Options, Tracer, picture};
 
 use super::USAGE_ERROR;
-use super::trace::{load_scene, number, render_option};
+use super::load::{load_scene, report_functions};
+use super::options::{number, render_option};
 
 const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
 [-vv deg] [-x res] [-y res] [-pa aspect] [-ab N] [-ad N] [-as N] [-av r g b] [-dj frac] [-dx+] [-e errfile] \
@@ -35,6 +36,17 @@ struct Args {
     errors: Option<PathBuf>,
     scenes: Vec<PathBuf>,
     warnings: bool,
+    /// `--allow-commands`: run `!` lines other than the built-in generators.
+    allow_commands: bool,
+}
+
+impl Args {
+    fn load_options(&self) -> radc_loader::LoadOptions {
+        radc_loader::LoadOptions {
+            warnings: self.warnings,
+            allow_commands: self.allow_commands,
+        }
+    }
 }
 
 /// View options from a view file (`-vf`): any words of the file before its first
@@ -70,6 +82,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         errors: None,
         scenes: Vec::new(),
         warnings: true,
+        allow_commands: false,
     };
     let words: Vec<&str> = args.iter().map(String::as_str).collect();
     let mut it = words.iter().copied().enumerate().peekable();
@@ -103,8 +116,9 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             "-o" => a
                 .outputs
                 .push(PathBuf::from(it.next().ok_or("-o needs a file name")?)),
+            "--allow-commands" => a.allow_commands = true,
             "-e" => a.errors = Some(PathBuf::from(it.next().ok_or("-e needs a file name")?)),
-            s if super::trace::switch(s, "-w", &mut a.warnings) => {}
+            s if super::options::switch(s, "-w", &mut a.warnings) => {}
             s if render_option(s, &mut it, &mut a.options)? => {}
             "-help" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),
@@ -118,7 +132,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    super::trace::with_threads(super::trace::thread_count(args), || run_parsed(args))
+    super::options::with_threads(super::options::thread_count(args), || run_parsed(args))
 }
 
 fn run_parsed(args: &[String]) -> ExitCode {
@@ -151,7 +165,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
-    let mut scene = match load_scene(&a.scenes, "render", a.warnings) {
+    let mut scene = match load_scene(&a.scenes, "render", a.load_options()) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -183,34 +197,11 @@ fn run_parsed(args: &[String]) -> ExitCode {
         if progress {
             s.spawn(|| show_progress(&done, h as usize));
         }
-        // Top row first; pixel centres at ((i + .5) / w, (j + .5) / h) with j counted upward.
-        let pixels: Vec<Color> = (0..h)
-            .into_par_iter()
-            .flat_map_iter(|row| {
-                let j = h - 1 - row;
-                let (camera, tracer) = (&camera, &tracer);
-                let row_pixels: Vec<Color> = (0..w)
-                    .map(move |i| {
-                        let x = (f64::from(i) + 0.5) / f64::from(w);
-                        let y = (f64::from(j) + 0.5) / f64::from(h);
-                        // Outside a fisheye's circle the picture is black.
-                        // Random choices derive from the pixel's index, not the thread.
-                        let index = u64::from(row) * u64::from(w) + u64::from(i);
-                        camera.ray(x, y).map_or(Color::ZERO, |(org, dir, max)| {
-                            tracer.radiance_seeded(org, dir, max, index).color
-                        })
-                    })
-                    .collect();
-                done.fetch_add(1, Ordering::Relaxed);
-                row_pixels
-            })
-            .collect();
+        let pixels = render_picture(&tracer, &camera, w, h, &done);
         // Rows done: tells the progress thread to finish.
         done.store(usize::MAX, Ordering::Relaxed);
         pixels
     });
-    let mut pixels = pixels;
-    radc_renderer::small_sources::draw(&tracer, &camera, w, h, 1.0, &mut pixels);
     if a.warnings && pixels.iter().all(|c| *c == Color::ZERO) {
         errln!(
             "radc render: warning: the picture is black: no light reaches the view (no light \
@@ -245,7 +236,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(1);
         }
     }
-    super::trace::report_functions(&scene, "render")
+    report_functions(&scene, "render")
 }
 
 /// `radc render -o x.png picture.hdr`: the one input is a Radiance picture and every
@@ -254,7 +245,7 @@ fn run_parsed(args: &[String]) -> ExitCode {
 /// scene loader explains that a picture is not a scene).
 fn picture_to_png(a: &Args) -> Option<ExitCode> {
     let [input] = &a.scenes[..] else { return None };
-    super::build::picture_description(input)?;
+    radc_loader::picture_description(input)?;
     if a.outputs.is_empty() || !a.outputs.iter().all(|p| is_png(p)) {
         return None;
     }
@@ -321,51 +312,4 @@ fn show_progress(done: &AtomicUsize, rows: usize) {
         let _ = err.flush();
         std::thread::sleep(std::time::Duration::from_millis(200));
     }
-}
-
-/// Rays sampled over the view to tell whether the view point is inside something.
-const PROBE: u32 = 16;
-
-/// rpict renders whatever the view sees; a view point inside a closed object mostly sees
-/// the backs of its faces, and usually renders black. A warning saying so, if most of a
-/// grid of view rays hit a surface from behind.
-fn inside_geometry(tracer: &Tracer<'_>, camera: &Camera) -> Option<String> {
-    let (mut hits, mut backs) = (0u32, 0u32);
-    let mut nearest: Option<(f64, u32)> = None;
-    for j in 0..PROBE {
-        for i in 0..PROBE {
-            let (x, y) = (
-                (f64::from(i) + 0.5) / f64::from(PROBE),
-                (f64::from(j) + 0.5) / f64::from(PROBE),
-            );
-            let Some((org, dir, max)) = camera.ray(x, y) else {
-                continue;
-            };
-            let r = tracer.radiance_within(org, dir, max);
-            let Target::Object(id) = r.hit else {
-                continue;
-            };
-            hits += 1;
-            if r.surface_normal().dot(r.dir) > 0.0 {
-                backs += 1;
-                if nearest.is_none_or(|(t, _)| r.length < t) {
-                    nearest = Some((r.length, id.0));
-                }
-            }
-        }
-    }
-    let probes = PROBE * PROBE;
-    if hits < probes / 2 || backs * 10 < hits * 9 {
-        return None;
-    }
-    let name = nearest
-        .and_then(|(_, id)| tracer.scene().object(id))
-        .map(|o| format!(" (the nearest is '{}')", o.name))
-        .unwrap_or_default();
-    let p = camera.position();
-    Some(format!(
-        "the view point ({} {} {}) seems to be inside geometry: {backs} of {probes} view rays \
-         hit the back of a surface{name}",
-        p.x, p.y, p.z
-    ))
 }

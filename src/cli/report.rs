@@ -4,47 +4,8 @@
 use std::io::{IsTerminal, Write};
 
 use ariadne::{Color, Config, IndexType, Label, Report, ReportKind};
-use radc_lang::{Diagnostic, FileId, LineIndex, Severity};
-
-/// A file as the report sees it: a display name and its (decoded) text.
-pub struct SourceText {
-    pub name: String,
-    pub text: String,
-    /// Built on first use: most files of a run have nothing to report.
-    lines: std::sync::OnceLock<LineIndex>,
-}
-
-impl SourceText {
-    pub fn lines(&self) -> &LineIndex {
-        self.lines.get_or_init(|| LineIndex::new(&self.text))
-    }
-}
-
-/// All files a run has read, indexed by `FileId`.
-#[derive(Default)]
-pub struct Sources {
-    files: Vec<SourceText>,
-}
-
-impl Sources {
-    /// The id the next added file will get.
-    pub fn next_id(&self) -> FileId {
-        FileId(self.files.len() as u32)
-    }
-
-    pub fn add(&mut self, name: String, text: String) -> FileId {
-        self.files.push(SourceText {
-            name,
-            text,
-            lines: std::sync::OnceLock::new(),
-        });
-        FileId(self.files.len() as u32 - 1)
-    }
-
-    pub fn get(&self, id: FileId) -> Option<&SourceText> {
-        self.files.get(id.0 as usize)
-    }
-}
+use radc_lang::{Diagnostic, Severity};
+pub use radc_loader::Sources;
 
 /// How diagnostics are shown (`--format`): ariadne reports for people, JSON lines for
 /// tools.
@@ -98,7 +59,7 @@ fn print_to(
             // made tens of thousands of diagnostics on a big file take hours. Only
             // files a diagnostic points into are indexed (a clean 60 MB scene costs
             // nothing here).
-            let mut shown = vec![false; sources.files.len()];
+            let mut shown = vec![false; sources.len()];
             for d in diags {
                 for file in std::iter::once(d.span.file).chain(d.labels.iter().map(|l| l.span.file))
                 {
@@ -110,7 +71,6 @@ fn print_to(
             // By name, as the cache keys them: a later file of the same name still
             // replaces an earlier one, as when every file was in it.
             let names: std::collections::HashSet<&str> = sources
-                .files
                 .iter()
                 .zip(&shown)
                 .filter(|(_, shown)| **shown)
@@ -118,7 +78,6 @@ fn print_to(
                 .collect();
             let mut cache = ariadne::sources(
                 sources
-                    .files
                     .iter()
                     .filter(|f| names.contains(f.name.as_str()))
                     .map(|f| (f.name.clone(), f.text.clone())),

@@ -1,56 +1,18 @@
-//! How the CLI expands `!command` lines in scenes: Radiance's generators that radc
+//! How a scene read from disk expands `!command` lines in scenes: Radiance's generators that radc
 //! builds in (genbox, gendaylit, genprism, genrev, gensky, gensurf, genworm, xform) run in-process; any other command runs through
 //! `sh` only when the user passed `--allow-commands`, and is otherwise reported as not
 //! expanded. Expanded text becomes a source file of its own so diagnostics inside it
 //! can be shown against it.
 
-use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use radc_generators::expansion::expansion;
-use radc_generators::{GenError, Host, read_on_path};
 use radc_lang::FileId;
 use radc_lang::scene::{CommandExpander, Expansion};
 use radc_lang::search_path::{Policy, SearchPath};
 
-/// Files a check reads beyond the scenes named on the command line (command
-/// outputs, function files), numbered after the sources already read so diagnostics
-/// can point into them. Shared by the command expander and the file lookup.
-pub struct PendingSources {
-    first_id: u32,
-    /// (display name, text, folder) in id order.
-    files: RefCell<Vec<(String, String, PathBuf)>>,
-}
-
-impl PendingSources {
-    pub fn new(first_id: u32) -> Self {
-        PendingSources {
-            first_id,
-            files: RefCell::new(Vec::new()),
-        }
-    }
-
-    pub fn add(&self, name: String, text: String, dir: PathBuf) -> FileId {
-        let mut files = self.files.borrow_mut();
-        files.push((name, text, dir));
-        FileId(self.first_id + files.len() as u32 - 1)
-    }
-
-    /// The folder a pending file's relative names resolve from.
-    pub fn dir_of(&self, file: FileId) -> Option<PathBuf> {
-        let index = file.0.checked_sub(self.first_id)?;
-        self.files.borrow().get(index as usize).map(|e| e.2.clone())
-    }
-
-    /// The files, as (display name, text), in id order.
-    pub fn into_sources(self) -> Vec<(String, String)> {
-        self.files
-            .into_inner()
-            .into_iter()
-            .map(|(name, text, _)| (name, text))
-            .collect()
-    }
-}
+use crate::generator_host::GeneratorHost;
+use crate::pending::PendingSources;
 
 pub struct Commands<'a> {
     /// The folder of each scene file, so relative names resolve from the scene.
@@ -82,11 +44,8 @@ impl<'a> Commands<'a> {
     /// Runs a command line: a built-in generator, or a pipeline of them (`genbox ... |
     /// xform -rz 90`), in-process; anything else through the shell, if allowed.
     fn run(&self, command: &str, dir: &Path) -> Expansion {
-        let mut host = SceneHost {
-            dir: dir.to_path_buf(),
-            stdin: String::new(),
-            warnings: Vec::new(),
-        };
+        let search = SearchPath::new(Policy::SceneRaypath, std::env::var_os("RAYPATH").as_deref());
+        let mut host = GeneratorHost::new(dir.to_path_buf(), &search);
         let register = |text: &str| {
             self.pending
                 .add(format!("!{command}"), text.to_string(), dir.to_path_buf())
@@ -136,30 +95,5 @@ impl<'a> Commands<'a> {
 impl CommandExpander for Commands<'_> {
     fn expand(&self, command: &str, from: FileId, _depth: u32) -> Expansion {
         self.run(command, &self.dir_of(from))
-    }
-}
-
-/// Files for generators run from a scene (`Policy::SceneRaypath`): relative to the
-/// scene's folder, then RAYPATH, then radc's built-in function files (`-f rayinit.cal` with no Radiance installed).
-struct SceneHost {
-    dir: PathBuf,
-    /// The previous pipeline stage's output.
-    stdin: String,
-    /// What the generators would have printed on standard error.
-    warnings: Vec<String>,
-}
-
-impl Host for SceneHost {
-    fn read_file(&mut self, path: &str) -> Result<String, GenError> {
-        let search = SearchPath::new(Policy::SceneRaypath, std::env::var_os("RAYPATH").as_deref());
-        read_on_path(&search, path, Some(&self.dir), |c| std::fs::read(c).ok())
-    }
-
-    fn read_stdin(&mut self) -> Result<String, GenError> {
-        Ok(std::mem::take(&mut self.stdin))
-    }
-
-    fn warn(&mut self, line: &str) {
-        self.warnings.push(line.to_string());
     }
 }
