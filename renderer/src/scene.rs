@@ -274,7 +274,7 @@ impl Scene {
     pub fn pack_surfaces(&mut self) {
         self.surfaces = Surfaces::pack(&self.objects, &self.bvh);
         self.hits = self.objects.iter().map(HitInfo::of).collect();
-        let opaque = |m: Option<&Material>| matches!(m, Some(Material::Normal(n)) if n.transmission.is_none());
+        let opaque = |m: Option<&Material>| matches!(m, Some(Material::Plastic(n)) if n.transmission.is_none());
         let material = |o: &Object| o.material.and_then(|m| self.material(m));
         let opaque_to_shadows = self.objects.iter().all(|o| opaque(material(o)));
         let opaque_to_object_shadows = self.objects.iter().all(|o| {
@@ -807,7 +807,7 @@ impl Compiler<'_> {
         let p = self.ir.get(kind)?;
         let rgb = |c: &[f64; 3]| vec3(*c);
         let material = match &p.kind {
-            PrimKind::Plastic { color, spec, rough } => Material::Normal(plastic::Normal {
+            PrimKind::Plastic { color, spec, rough } => Material::Plastic(plastic::Plastic {
                 color: rgb(color),
                 spec: *spec,
                 rough: *rough,
@@ -821,9 +821,9 @@ impl Compiler<'_> {
                 rough,
                 trans: tr,
                 tspec,
-            } => Material::Normal(trans::trans(rgb(color), *spec, *rough, *tr, *tspec)),
+            } => Material::Plastic(trans::trans(rgb(color), *spec, *rough, *tr, *tspec)),
             PrimKind::Metal { color, spec, rough } => {
-                Material::Normal(metal::metal(rgb(color), *spec, *rough))
+                Material::Plastic(metal::metal(rgb(color), *spec, *rough))
             }
             PrimKind::Mirror { alternate, color } => {
                 let alternate = self.alternate(kind, alternate.as_deref());

@@ -6,8 +6,8 @@
 
 use crate::bvh::Prepared;
 use crate::lights::SourceTarget;
-use crate::materials::plastic::Normal;
-use crate::materials::{Material, MaterialId};
+use crate::materials::plastic::Plastic;
+use crate::materials::{Material, MaterialId, ShadingContext};
 use crate::math::{Color, FHUGE, FTINY, Vec3, intensity};
 use crate::ray::{ObjectId, Ray};
 use crate::scene::MAX_LAMPS;
@@ -79,7 +79,7 @@ fn may_spawn(r: &RayState, weight: f64) -> bool {
 }
 
 /// Radiance's `Lamb`: white plastic of reflectance pi, which reflects the irradiance.
-const LAMBERTIAN: Normal = Normal {
+const LAMBERTIAN: Plastic = Plastic {
     color: Color::splat(std::f64::consts::PI),
     spec: 0.0,
     rough: 0.0,
@@ -233,7 +233,7 @@ impl<'a> Tracer<'a> {
         };
         // normal.c's easy shadow test comes before its patterns.
         if r.kind.any(RayKind::SHADOW)
-            && matches!(material, Material::Normal(n) if n.transmission.is_none())
+            && matches!(material, Material::Plastic(n) if n.transmission.is_none())
         {
             return;
         }
@@ -258,7 +258,7 @@ impl<'a> Tracer<'a> {
         }
         let mut shaded = material.clone();
         match &mut shaded {
-            Material::Normal(n) => {
+            Material::Plastic(n) => {
                 n.color *= pcol;
                 n.texture = pert;
             }
@@ -277,14 +277,14 @@ impl<'a> Tracer<'a> {
         if self.options.irradiance_at_hits && primary {
             match material {
                 Some(m) if m.is_transparent() => return self.transmit(r),
-                Some(Material::Normal(_) | Material::Mirror(_) | Material::Anisotropic(_)) => {
+                Some(Material::Plastic(_) | Material::Mirror(_) | Material::Anisotropic(_)) => {
                     return LAMBERTIAN.shade(self, r);
                 }
                 _ => {}
             }
         }
         match material {
-            Some(Material::Normal(n)) => n.shade(self, r),
+            Some(Material::Plastic(n)) => n.shade(self, r),
             Some(Material::Mirror(m)) => m.shade(self, r),
             Some(Material::Glass(g)) => g.shade(self, r),
             Some(Material::Dielectric(d)) => d.shade(self, r),
@@ -418,6 +418,53 @@ impl<'a> Tracer<'a> {
             seed,
             ambient_depth: r.ambient_depth + u32::from(kind == RayKind::AMBIENT),
         })
+    }
+}
+
+/// The tracer is the context materials shade in when rendering.
+impl ShadingContext for Tracer<'_> {
+    fn options(&self) -> &Options {
+        &self.options
+    }
+
+    fn hit_is_flat(&self, r: &RayState) -> bool {
+        r.hit_is_flat(self.scene)
+    }
+
+    fn aimed_at_other_source(&self, r: &RayState) -> Option<bool> {
+        r.aimed_at_other_source(self.scene)
+    }
+
+    fn aimed_source_is_weak(&self, r: &RayState) -> bool {
+        Tracer::aimed_source_is_weak(self, r)
+    }
+
+    fn imaged_source(&self, source: usize) -> Option<usize> {
+        self.scene.sources.get(source).and_then(|s| s.parent)
+    }
+
+    fn spawn(&self, r: &RayState, kind: RayKind, coef: Option<Color>) -> Option<RayState> {
+        Tracer::spawn(self, r, kind, coef)
+    }
+
+    fn trace(&self, r: &mut RayState) {
+        Tracer::trace(self, r)
+    }
+
+    fn shade(&self, r: &mut RayState, material: Option<MaterialId>) {
+        Tracer::shade(self, r, material)
+    }
+
+    fn transmit(&self, r: &mut RayState) {
+        Tracer::transmit(self, r)
+    }
+
+    fn ambient(&self, r: &RayState, coef: Color, normal: Vec3) -> Color {
+        Tracer::ambient(self, r, coef, normal)
+    }
+
+    fn direct(&self, r: &mut RayState, coef: &dyn Fn(Vec3, f64) -> Color) {
+        Tracer::direct(self, r, coef)
     }
 }
 

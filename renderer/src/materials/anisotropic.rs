@@ -2,7 +2,8 @@
 //! Gaussian highlight, rougher along one surface direction than across it. The
 //! direction comes from three expressions; radc takes them when they are numbers.
 
-use crate::integrator::{RayKind, RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::{RayKind, RayState};
 use crate::math::{Color, FTINY, Vec3, normalize, perpendicular};
 use std::f64::consts::PI;
 
@@ -23,15 +24,15 @@ struct Shading {
     color: Color,
     specular: Color,
     normal: Vec3,
-    pdot: f64,
+    cos_incidence: f64,
     u: Vec3,
     v: Vec3,
     u_alpha: f64,
     v_alpha: f64,
-    rdiff: f64,
-    trans: f64,
-    tdiff: f64,
-    tspec: f64,
+    diffuse_reflection: f64,
+    transmission: f64,
+    diffuse_transmission: f64,
+    specular_transmission: f64,
     reflects: bool,
     transmits: bool,
     flat: bool,
@@ -39,7 +40,7 @@ struct Shading {
 }
 
 impl Anisotropic {
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         if r.kind.any(RayKind::SHADOW) {
             return; // opaque to shadow rays, even trans2
         }
@@ -53,19 +54,19 @@ impl Anisotropic {
         let threshold = t.options().specular_threshold + FTINY;
         // Highlights above -st are sampled at random by Radiance; radc does not sample
         // them (its result then lacks that part).
-        if s.rdiff > FTINY {
-            let mut amb = s.color * s.rdiff;
+        if s.diffuse_reflection > FTINY {
+            let mut amb = s.color * s.diffuse_reflection;
             if s.reflects && self.spec <= threshold {
                 amb += s.specular;
             }
             let indirect = t.ambient(r, amb, s.normal);
             r.color += indirect;
         }
-        if s.tdiff > FTINY {
-            let k = if s.transmits && s.tspec <= threshold {
-                s.trans
+        if s.diffuse_transmission > FTINY {
+            let k = if s.transmits && s.specular_transmission <= threshold {
+                s.transmission
             } else {
-                s.tdiff
+                s.diffuse_transmission
             };
             // From the other side: the hemisphere behind the surface.
             let indirect = t.ambient(r, s.color * k, -s.normal);
@@ -74,18 +75,18 @@ impl Anisotropic {
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
 
-    fn setup(&self, t: &Tracer<'_>, r: &RayState) -> Shading {
-        let rspec = self.spec;
-        let reflects = rspec > FTINY;
+    fn setup(&self, t: &impl ShadingContext, r: &RayState) -> Shading {
+        let specular_reflection = self.spec;
+        let reflects = specular_reflection > FTINY;
         let specular = if self.metal {
-            self.color * rspec
+            self.color * specular_reflection
         } else {
-            Color::splat(rspec)
+            Color::splat(specular_reflection)
         };
-        let (trans, tspec) = match self.transmission {
+        let (transmission, specular_transmission) = match self.transmission {
             Some((tr, ts)) => {
-                let trans = tr * (1.0 - rspec);
-                (trans, trans * ts)
+                let transmission = tr * (1.0 - specular_reflection);
+                (transmission, transmission * ts)
             }
             None => (0.0, 0.0),
         };
@@ -106,18 +107,18 @@ impl Anisotropic {
             color: self.color,
             specular,
             normal,
-            pdot: r.rod.max(0.001),
+            cos_incidence: r.rod.max(0.001),
             u,
             v,
             u_alpha,
             v_alpha,
-            rdiff: 1.0 - trans - rspec,
-            trans,
-            tdiff: trans - tspec,
-            tspec,
+            diffuse_reflection: 1.0 - transmission - specular_reflection,
+            transmission,
+            diffuse_transmission: transmission - specular_transmission,
+            specular_transmission,
             reflects,
-            transmits: tspec > FTINY,
-            flat: r.hit_is_flat(t.scene()),
+            transmits: specular_transmission > FTINY,
+            flat: t.hit_is_flat(r),
             ray_dir: r.dir,
         }
     }
@@ -129,18 +130,18 @@ impl Shading {
         let ldot = self.normal.dot(ldir);
         let mut out = Color::ZERO;
         let wrong_side = if ldot < 0.0 {
-            self.trans <= FTINY
+            self.transmission <= FTINY
         } else {
-            self.trans >= 1.0 - FTINY
+            self.transmission >= 1.0 - FTINY
         };
         if wrong_side {
             return out;
         }
-        if ldot > FTINY && self.rdiff > FTINY {
-            out += self.color * (ldot * omega * self.rdiff / PI);
+        if ldot > FTINY && self.diffuse_reflection > FTINY {
+            out += self.color * (ldot * omega * self.diffuse_reflection / PI);
         }
-        if ldot < -FTINY && self.tdiff > FTINY {
-            out += self.color * (-ldot * omega * self.tdiff / PI);
+        if ldot < -FTINY && self.diffuse_transmission > FTINY {
+            out += self.color * (-ldot * omega * self.diffuse_transmission / PI);
         }
         if ldot > FTINY && self.reflects {
             let extra = if self.flat { omega * (0.25 / PI) } else { 0.0 };
@@ -172,9 +173,9 @@ impl Shading {
             } else {
                 1.0
             };
-            g *= (1.0 / PI) * (-ldot / (self.pdot * au2 * av2)).sqrt();
+            g *= (1.0 / PI) * (-ldot / (self.cos_incidence * au2 * av2)).sqrt();
             if g > FTINY {
-                out += self.color * (g * self.tspec * omega);
+                out += self.color * (g * self.specular_transmission * omega);
             }
         }
         out

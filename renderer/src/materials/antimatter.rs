@@ -5,7 +5,8 @@
 //! the first listed modifier (the cut face).
 
 use super::MaterialId;
-use crate::integrator::{RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::RayState;
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Antimatter {
@@ -17,7 +18,7 @@ pub struct Antimatter {
 }
 
 impl Antimatter {
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         let entering = r.rod > 0.0;
         let mut set = r.clipset.clone();
         for m in &self.modifiers {

@@ -3,7 +3,8 @@
 //! total internal reflection beyond the critical angle. The transmission colours are per
 //! unit distance: rays inside absorb along their length.
 
-use crate::integrator::{RayKind, RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::{RayKind, RayState};
 use crate::math::{Color, FTINY, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -32,10 +33,10 @@ fn extinction(c: Color) -> Color {
 }
 
 impl Dielectric {
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         let mut cos1 = r.rod;
         let mut normal = r.normal;
-        let flat = r.hit_is_flat(t.scene());
+        let flat = t.hit_is_flat(r);
         let mut nratio = self.index;
         let refracted_extinction;
         if cos1 < 0.0 {
@@ -90,5 +91,50 @@ impl Dielectric {
         if flat {
             r.mirror_length += child.effective_length();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::context::scripted::{Scripted, hit};
+    use crate::math::Vec3;
+
+    fn water() -> Dielectric {
+        Dielectric {
+            inside: Color::ONE,
+            index: 1.33,
+            outside: None,
+        }
+    }
+
+    #[test]
+    fn a_ray_entering_refracts_by_snells_law() {
+        let t = Scripted::default();
+        let dir = Vec3::new(0.5, 0.0, -1.0).normalize();
+        let mut r = hit(dir);
+        water().shade(&t, &mut r);
+        let traced = t.traced.borrow();
+        let (kind, refracted, _) = traced[0];
+        assert!(kind.any(RayKind::REFRACTED));
+        let sin_in = dir.x;
+        assert!((refracted.x - sin_in / 1.33).abs() < 1e-12, "{refracted:?}");
+        let (_, _, reflected) = traced[1];
+        assert!(reflected.x > 0.0 && reflected.x < 0.1);
+    }
+
+    #[test]
+    fn beyond_the_critical_angle_all_light_is_reflected() {
+        let t = Scripted::default();
+        // Leaving the water (hitting the back) at 60 degrees, past asin(1/1.33).
+        let dir = Vec3::new(60f64.to_radians().sin(), 0.0, 60f64.to_radians().cos());
+        let mut r = hit(dir);
+        water().shade(&t, &mut r);
+        let traced = t.traced.borrow();
+        assert_eq!(traced.len(), 1, "no refracted ray");
+        let (kind, d, coef) = traced[0];
+        assert!(kind.any(RayKind::REFLECTED));
+        assert_eq!(coef, Color::ONE);
+        assert!(d.z < 0.0, "reflected back inside: {d:?}");
     }
 }

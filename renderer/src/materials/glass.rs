@@ -3,7 +3,8 @@
 //! reflections between the two faces summed in closed form; the colour is the
 //! transmission at normal incidence, attenuated along the longer path at an angle.
 
-use crate::integrator::{RayKind, RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::{RayKind, RayState};
 use crate::math::{Color, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -13,7 +14,7 @@ pub struct Glass {
 }
 
 impl Glass {
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         if !t.options().backface_visible && r.rod <= 0.0 {
             return t.transmit(r);
         }
@@ -28,8 +29,8 @@ impl Glass {
         if r.rod < 0.0 {
             r.flip();
         }
-        let pdot = r.rod;
-        let cos2 = ((1.0 - 1.0 / (n * n)) + pdot * pdot / (n * n)).sqrt();
+        let cos_incidence = r.rod;
+        let cos2 = ((1.0 - 1.0 / (n * n)) + cos_incidence * cos_incidence / (n * n)).sqrt();
         if transmits {
             color = Color::new(
                 color.x.powf(1.0 / cos2),
@@ -38,8 +39,8 @@ impl Glass {
             );
         }
         // Fresnel reflectances for the two polarizations.
-        let r1e = ((pdot - n * cos2) / (pdot + n * cos2)).powi(2);
-        let r1m = ((1.0 / pdot - n / cos2) / (1.0 / pdot + n / cos2)).powi(2);
+        let r1e = ((cos_incidence - n * cos2) / (cos_incidence + n * cos2)).powi(2);
+        let r1m = ((1.0 / cos_incidence - n / cos2) / (1.0 / cos_incidence + n / cos2)).powi(2);
         if transmits {
             let through = |d: f64| {
                 0.5 * (1.0 - r1e).powi(2) * d / (1.0 - r1e * r1e * d * d)
@@ -65,15 +66,46 @@ impl Glass {
         let Some(mut child) = t.spawn(r, RayKind::REFLECTED, Some(coef)) else {
             return;
         };
-        child.dir = r.dir + r.normal * (2.0 * pdot);
+        child.dir = r.dir + r.normal * (2.0 * cos_incidence);
         normalize(&mut child.dir);
         t.trace(&mut child);
         let c = child.color * child.coef;
         r.mirror_color = c;
         r.color += c;
         r.mirror_length = r.length;
-        if r.hit_is_flat(t.scene()) {
+        if t.hit_is_flat(r) {
             r.mirror_length += child.effective_length();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::context::scripted::{Scripted, hit};
+    use crate::math::Vec3;
+
+    #[test]
+    fn clear_glass_at_normal_incidence_splits_light_as_the_fresnel_series_sums() {
+        let t = Scripted::default();
+        let glass = Glass {
+            transmission: Color::ONE,
+            index: 1.52,
+        };
+        let mut r = hit(Vec3::new(0.0, 0.0, -1.0));
+        glass.shade(&t, &mut r);
+        let traced = t.traced.borrow();
+        assert_eq!(traced.len(), 2);
+        let f: f64 = ((1.0 - 1.52) / (1.0 + 1.52_f64)).powi(2);
+        let (through, reflected) = (traced[0].2.x, traced[1].2.x);
+        assert!((through - (1.0 - f) / (1.0 + f)).abs() < 1e-12, "{through}");
+        assert!(
+            (reflected - 2.0 * f / (1.0 + f)).abs() < 1e-12,
+            "{reflected}"
+        );
+        assert!(
+            (through + reflected - 1.0).abs() < 1e-12,
+            "no loss in clear glass"
+        );
     }
 }

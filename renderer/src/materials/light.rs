@@ -4,7 +4,8 @@
 //! seen by any ray not aimed at it shows its alternate material instead.
 
 use super::Alternate;
-use crate::integrator::{RayKind, RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::{RayKind, RayState};
 use crate::math::{Color, FTINY, Vec3, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -95,14 +96,14 @@ impl Emitter {
         )
     }
 
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         let stray = r.kind.any(RayKind::AMBIENT | RayKind::SPECULAR)
             && !(r.kind.any(RayKind::SHADOW) || r.rod < 0.0 || self.distant_glow(r.length));
         if stray {
             r.coef = Color::ZERO;
             return;
         }
-        if let Some(true) = r.aimed_at_other_source(t.scene()) {
+        if let Some(true) = t.aimed_at_other_source(r) {
             let illum_passes = matches!(self.kind, EmitterKind::Illum { .. })
                 && !(r.rod > 0.0 && t.aimed_source_is_weak(r));
             if !illum_passes {
@@ -111,7 +112,7 @@ impl Emitter {
             }
         }
         if let EmitterKind::Illum { alternate } = self.kind
-            && r.aimed_at_other_source(t.scene()) != Some(false)
+            && t.aimed_at_other_source(r) != Some(false)
         {
             match alternate {
                 Alternate::Material(m) => t.shade(r, Some(m)),

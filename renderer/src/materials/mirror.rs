@@ -2,7 +2,8 @@
 //! Mirrors also relay light sources as virtual sources (`-dr`, see `virtuals.rs`).
 
 use super::Alternate;
-use crate::integrator::{RayKind, RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::{RayKind, RayState};
 use crate::math::{Color, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -12,9 +13,9 @@ pub struct Mirror {
 }
 
 impl Mirror {
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         // None: not a shadow ray; Some(false): aimed at this mirror's virtual source.
-        let aimed_elsewhere = r.aimed_at_other_source(t.scene());
+        let aimed_elsewhere = t.aimed_at_other_source(r);
         if self.alternate != Alternate::None && aimed_elsewhere != Some(false) {
             let pass_ok = r.rod < 0.0 || !r.kind.any(RayKind::AMBIENT | RayKind::SPECULAR);
             if pass_ok {
@@ -34,7 +35,7 @@ impl Mirror {
             return;
         }
         let relay = match (aimed_elsewhere, r.source) {
-            (Some(false), Some(si)) => t.scene().sources.get(si).and_then(|s| s.parent),
+            (Some(false), Some(si)) => t.imaged_source(si),
             _ => None,
         };
         let Some(mut child) = t.spawn(r, RayKind::REFLECTED, Some(self.color)) else {
@@ -49,8 +50,38 @@ impl Mirror {
         r.mirror_color = c;
         r.color += c;
         r.mirror_length = r.length;
-        if r.hit_is_flat(t.scene()) {
+        if t.hit_is_flat(r) {
             r.mirror_length += child.effective_length();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::context::scripted::{Scripted, hit};
+    use crate::math::Vec3;
+
+    #[test]
+    fn a_mirror_reflects_about_the_normal_and_tints_what_it_sees() {
+        let t = Scripted {
+            seen: Color::splat(2.0),
+            ..Scripted::default()
+        };
+        let m = Mirror {
+            color: Color::new(0.9, 0.5, 0.1),
+            alternate: Alternate::None,
+        };
+        let mut r = hit(Vec3::new(0.0, 1.0, -2.0));
+        m.shade(&t, &mut r);
+        let (kind, d, _) = t.traced.borrow()[0];
+        assert!(kind.any(RayKind::REFLECTED));
+        assert!((d - Vec3::new(0.0, 1.0, 2.0).normalize()).length() < 1e-12);
+        assert!((r.color - Color::new(1.8, 1.0, 0.2)).length() < 1e-12);
+        assert_eq!(r.mirror_color, r.color);
+        // The back of a mirror is black.
+        let mut back = hit(Vec3::new(0.0, 0.0, 1.0));
+        m.shade(&t, &mut back);
+        assert_eq!(back.color, Color::ZERO);
     }
 }

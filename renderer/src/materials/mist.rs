@@ -3,7 +3,8 @@
 //! is invisible. radc models absorbing mist only: scattering (an albedo) needs random
 //! sampling of in-scattered light, which it refuses.
 
-use crate::integrator::{RayKind, RayState, Tracer};
+use super::ShadingContext;
+use crate::integrator::{RayKind, RayState};
 use crate::math::Color;
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -12,7 +13,7 @@ pub struct Mist {
 }
 
 impl Mist {
-    pub fn shade(&self, t: &Tracer<'_>, r: &mut RayState) {
+    pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
         let Some(mut child) = t.spawn(r, RayKind::TRANS, None) else {
             return;
         };

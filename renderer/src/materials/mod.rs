@@ -3,6 +3,7 @@
 
 pub mod anisotropic;
 pub mod antimatter;
+pub mod context;
 pub mod dielectric;
 pub mod glass;
 pub mod light;
@@ -11,6 +12,8 @@ pub mod mirror;
 pub mod mist;
 pub mod plastic;
 pub mod trans;
+
+pub use context::ShadingContext;
 
 use crate::math::Color;
 
@@ -21,7 +24,7 @@ pub struct MaterialId(pub u32);
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Material {
     /// `plastic` and `metal`: Radiance's "normal" materials (normal.c).
-    Normal(plastic::Normal),
+    Plastic(plastic::Plastic),
     Mirror(mirror::Mirror),
     Glass(glass::Glass),
     /// `dielectric` and `interface`.
@@ -48,7 +51,7 @@ impl Material {
     /// Radiance's `istransp`: transmitting types lose ties to opaque ones.
     pub fn is_transparent(&self) -> bool {
         match self {
-            Material::Normal(n) => n.is_transparent(),
+            Material::Plastic(n) => n.is_transparent(),
             Material::Glass(_) | Material::Dielectric(_) | Material::Mist(_) => true,
             Material::Anisotropic(a) => a.transmission.is_some(),
             _ => false,
@@ -76,7 +79,7 @@ impl Material {
 
     pub fn color(&self) -> Color {
         match self {
-            Material::Normal(n) => n.color,
+            Material::Plastic(n) => n.color,
             Material::Mirror(m) => m.color,
             Material::Glass(g) => g.transmission,
             Material::Dielectric(d) => d.inside,

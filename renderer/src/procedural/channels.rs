@@ -31,26 +31,26 @@ impl Channels {
     /// func.c's `getfunc` keeps it (`bxp`).
     pub fn new(r: &RayView, xf: &Transform) -> Channels {
         let m = &xf.matrix;
-        let sca = xf.scale;
+        let scale = xf.scale;
         let mut c = [0.0; COUNT];
         let d = [r.dir.x, r.dir.y, r.dir.z];
         let n = [r.normal.x, r.normal.y, r.normal.z];
         let p = [r.point.x, r.point.y, r.point.z];
         for j in 0..3 {
-            c[j] = (d[0] * m[0][j] + d[1] * m[1][j] + d[2] * m[2][j]) / sca;
-            c[3 + j] = (n[0] * m[0][j] + n[1] * m[1][j] + n[2] * m[2][j]) / sca;
+            c[j] = (d[0] * m[0][j] + d[1] * m[1][j] + d[2] * m[2][j]) / scale;
+            c[3 + j] = (n[0] * m[0][j] + n[1] * m[1][j] + n[2] * m[2][j]) / scale;
             c[6 + j] = p[0] * m[0][j] + p[1] * m[1][j] + p[2] * m[2][j] + m[3][j];
         }
-        c[9] = r.total_distance * sca;
+        c[9] = r.total_distance * scale;
         c[10] = r.rod.clamp(-1.0, 1.0);
-        c[11] = sca;
+        c[11] = scale;
         for j in 0..3 {
             c[12 + j] = m[3][j];
-            c[15 + j] = m[0][j] / sca;
-            c[18 + j] = m[1][j] / sca;
-            c[21 + j] = m[2][j] / sca;
+            c[15 + j] = m[0][j] / scale;
+            c[18 + j] = m[1][j] / scale;
+            c[21 + j] = m[2][j] / scale;
         }
-        c[24] = r.length * sca;
+        c[24] = r.length * scale;
         c[25] = r.uv[0];
         c[26] = r.uv[1];
         Channels(c)
