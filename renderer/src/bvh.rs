@@ -8,6 +8,21 @@
 //! for, so that a box test can only err towards visiting. Eight lanes are one AVX
 //! register (two SSE ones): against four they halve the nodes a ray visits (the
 //! room of `bench/trace_rays.py`: 7.0 to 3.9 a traversal, BENCHMARKS.md).
+//!
+//! A node is 256 bytes: its eight children's boxes in `f32`, rounded outward, laid out
+//! per axis and side as eight lanes, and their links (unused lanes hold an empty box and
+//! `Link::NONE`). Traversal tests all eight children at once (module `lanes`: one AVX
+//! register where the processor has AVX2, found once per process by `simd::avx2()`, else
+//! two SSE2 ones; both bit-identical to the scalar reference `Slabs::entries`, the walk
+//! compiled once per instruction set through `#[target_feature]`; `RADC_NO_AVX2=1` forces
+//! the portable one) in `f32`, with the origin rounded towards smaller entry and larger
+//! exit distances and an exit slack that covers the rounding, so a box test may only err
+//! towards visiting (a test pins this 1e5 units from the origin, where an `f32` origin is
+//! off by millimetres); no NaN fix-ups (a NaN leaves a slab unbounded). The walk goes on
+//! with the nearest child entered and stacks the others; large trees prefetch every child
+//! entered. Scenes of up to 65,536 primitives get single-primitive leaves and an SAH over
+//! all axes (`LeafRule`); larger ones leaves of up to four. The tree reports leaf *slots*;
+//! `Bvh::primitive(slot)` is the object. `Bvh::validate` checks a loaded tree's indices.
 
 use crate::math::{Bounds, Vec3, prefetch};
 use crate::ray::Ray;

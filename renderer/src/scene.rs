@@ -1,5 +1,16 @@
 //! The compiled scene: the reachable surfaces of an `ir::Scene` with their shapes and
 //! resolved materials, the BVH over them, and the light sources.
+//!
+//! Anything in a reachable modifier chain the renderer does not model is listed as
+//! `Unsupported` with the chain, never dropped; `Scene::refusals` is what `radc check` and
+//! the language server report as W0307. `Scene::validate` checks the indices tracing
+//! relies on. Derived at compile and at load, never stored: `Scene::opaque_to_shadows`
+//! (every surface is plastic or metal without transmission, so a shadow ray toward a
+//! distant source is decided by its first hit), `Scene::opaque_to_object_shadows` (every
+//! surface is such or a light, glow or spotlight: a shadow ray toward a surface source
+//! only asks whether the source is the nearest surface), `HitInfo` (per object the
+//! material, modifier and flatness shading reads, 16 bytes apart from the `Object`), the
+//! lamps and the packed surfaces.
 
 use radc_lang::scene::ir::{self, ModRef, PrimId, PrimKind};
 use radc_lang::schema::Category;

@@ -7,6 +7,18 @@
 //! database. Because that answer comes from outside salsa's view, the front end bumps
 //! [`FileSystem::generation`] when the disk may have changed, which re-runs the checks
 //! (not the parses).
+//!
+//! Inputs: `SourceFile { id, path, contents, warn_unused }` and the singleton
+//! `FileSystem { generation }`. `contents` keeps up to date, as the text is edited, what
+//! would otherwise be recomputed from the whole text: the line index, the parse as a scene
+//! and the modifier scope; it changes only through `Database::set_text` and
+//! `Database::edit`, which re-read only the statements an edit touches
+//! (`scene::reparse`). The checks lower the memoized syntax trees with `Keep::Modifiers`,
+//! as `radc check` does. Auxiliary files and `!` lines come from an `AuxFiles` trait object
+//! the front end installs; since salsa cannot see the disk, the front end bumps
+//! `FileSystem::generation` when files may have changed (checks re-run, parses do not).
+//! Pinned by tests on `Database::parse_stats` (parses, whole parses and statements read,
+//! per file).
 
 mod cal;
 mod queries;

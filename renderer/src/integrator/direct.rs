@@ -1,5 +1,18 @@
 //! Direct light: each source sample's coefficient, shadow ray and value
 //! (`direct()` in source.c, every sample tested: rtrace `-dt 0`).
+//!
+//! `Tracer::direct` works in three passes over a point's source samples (`Shot`s): the
+//! material's coefficients, the source surfaces' hits, then the shadow walks, adding in the
+//! same order; the hits' dependent divisions and square roots then overlap instead of each
+//! stalling between two walks. When every source is a lamp (a sphere that is its own
+//! surface, no glow distance, spotlight cone, mirror image or beam; at most `MAX_LAMPS`)
+//! and without jitter or `-dx+`, `direct_lamps` does the same passes with the lamps'
+//! samples and packed spheres at hand and each shadow ray's slab values prepared in the
+//! hits' pass. In a scene opaque to object shadows a shadow ray toward a real surface
+//! source is no `RayState`: the emitter's value (`Emitter::aimed_shadow_radiance`), the
+//! medium's absorption and whether the source is the nearest surface decide it
+//! (`shadows.rs`). Virtual sources, `illum`s and backs seen with `-bv-` take the general
+//! path (a spawned shadow ray, shaded).
 
 use super::shadows::StartPlane;
 use super::*;

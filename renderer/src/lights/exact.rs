@@ -1,6 +1,21 @@
 //! radc's exact source samples (`-dx+`): each partition given its exact solid angle
 //! (`crate::solid_angle`): cap cells for spheres, fans for convex polygons, annular
 //! sectors for disks.
+//!
+//! Parallelograms keep Radiance's partitions; disks are split by the same rule into
+//! annular sectors of equal area, and each partition's sample points along its exact
+//! vector solid angle `V` (the integral of the direction over the partition's solid
+//! angle) with solid angle `|V|`, so a fully visible partition above the horizon lights a
+//! Lambertian surface exactly (distant sources: one cap). A sphere's cone of directions is
+//! split into pieces of equal solid angle; other convex polygons into triangles (the whole
+//! polygon while the point is far, then its fan, each halved across its longest edge),
+//! whose `V` is exact too; cylinders and concave polygons keep Radiance's samples. With
+//! `-dj`, disk and triangle pieces are jittered uniformly by area and sphere pieces
+//! uniformly by solid angle (unbiased at `-dj 1`; Radiance's jittered disk samples stay
+//! 2.4% low on the disk test case, and its sphere samples, points of a cube inside the
+//! sphere, spread 11x more where the horizon cuts it). Off by default: rtrace's own errors
+//! (order `(size / distance)^2` per partition, 1-3% at `-ds 0.2`) are far above the 1e-3
+//! to which radc reproduces rtrace.
 
 use super::partition::*;
 use super::*;

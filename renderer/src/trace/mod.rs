@@ -4,6 +4,16 @@
 //! index in the input, so the output is the same for any thread count and any order of
 //! evaluation. The CLI's `radc trace` (and rtrace by its name) parse options and write
 //! the header; everything from the first ray on is here.
+//!
+//! Ray text (`ray_text.rs`) has fast exact paths for the usual shapes of numbers that
+//! fall back on `lang::c_number`'s definitions, so the text is theirs bit for bit; lines of
+//! ASCII spaces and numbers are read in place in the input's buffer. Each chunk is
+//! formatted into its own reused byte buffer. In a scene whose nodes and surfaces exceed
+//! 1 MiB a batch holds 2^18 rays and is traced in `RayOrder::sort`'s order. `-x` flushes
+//! every `x` rays as rtrace does, so a program sending one ray at a time gets each answer.
+//! A chunk makes each ray ready (direction normalized, slab values prepared: `Primary`,
+//! `Tracer::radiance_prepared`) before it traces the ray ahead, so a ray's first divisions
+//! overlap the previous ray.
 
 mod encoding;
 mod ray_text;
