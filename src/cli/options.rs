@@ -49,11 +49,83 @@ pub(super) fn number<'a>(
         .ok_or_else(|| format!("{what}: '{v}' is not a number"))
 }
 
+/// Options rtrace and rpict take that change what Radiance computes but that radc does
+/// not model yet. radc computes as if they had the value in brackets; each given
+/// otherwise is reported as a warning naming it (never silently accepted):
+/// the irradiance cache (`-aa 0`: every ambient value computed; `-ar -aw -ai -ae -aI
+/// -aE -af` only matter to the cache), probabilistic shadow testing (`-dt 0`, with its
+/// `-dc`), specular sampling (`-ss 1`), correlated sampling (`-u-`), and for rpict pixel
+/// jitter (`-pj 0`).
+#[derive(Debug, Default)]
+pub(super) struct Unmodelled {
+    cache_accuracy: Option<f64>,
+    cache_options: Vec<String>,
+    ambient_file: Option<String>,
+    shadow_threshold: Option<f64>,
+    specular_sampling: Option<f64>,
+    uncorrelated: bool,
+    pixel_jitter: Option<f64>,
+}
+
+impl Unmodelled {
+    /// rpict's `-pj`: radc traces each pixel at its centre.
+    pub(super) fn pixel_jitter(&mut self, value: f64) {
+        self.pixel_jitter = Some(value);
+    }
+
+    /// One warning per option whose value radc does not honour under `o` (cache
+    /// options matter only with `-ab > 0`).
+    pub(super) fn warnings(&self, o: &Options) -> Vec<String> {
+        let mut out = Vec::new();
+        let indirect = o.ambient_bounces > 0 && o.ambient_divisions > 0;
+        if indirect {
+            if let Some(aa) = self.cache_accuracy.filter(|a| *a > 0.0) {
+                out.push(format!(
+                    "-aa {aa}: radc has no irradiance cache yet and computes every ambient \
+                     value (as -aa 0): slower, noisier per sample, without the cache's bias"
+                ));
+            }
+            if !self.cache_options.is_empty() {
+                out.push(format!(
+                    "{}: irradiance cache options, ignored (radc computes as -aa 0)",
+                    self.cache_options.join(" ")
+                ));
+            }
+            if let Some(file) = &self.ambient_file {
+                out.push(format!(
+                    "-af {file}: no ambient file is read or written (radc has no irradiance cache yet)"
+                ));
+            }
+        }
+        if let Some(dt) = self.shadow_threshold.filter(|d| *d > 0.0) {
+            out.push(format!(
+                "-dt {dt}: radc tests every shadow ray (as -dt 0): results are rtrace's at \
+                 -dt 0, not at -dt {dt}"
+            ));
+        }
+        if let Some(ss) = self.specular_sampling.filter(|s| *s != 1.0) {
+            out.push(format!(
+                "-ss {ss}: radc samples each rough highlight once (as -ss 1)"
+            ));
+        }
+        if self.uncorrelated {
+            out.push("-u+: radc's sampling is its own reproducible sequence (as -u-)".into());
+        }
+        if let Some(pj) = self.pixel_jitter.filter(|p| *p > 0.0) {
+            out.push(format!(
+                "-pj {pj}: radc traces one ray through each pixel's centre (as -pj 0)"
+            ));
+        }
+        out
+    }
+}
+
 /// Rendering options shared with `radc render` (rpict's): true when `arg` was one.
 pub(super) fn render_option<'a>(
     arg: &str,
     it: &mut impl Iterator<Item = &'a str>,
     o: &mut Options,
+    unmodelled: &mut Unmodelled,
 ) -> Result<bool, String> {
     match arg {
         s if switch(s, "-bv", &mut o.backface_visible) => {}
@@ -66,9 +138,12 @@ pub(super) fn render_option<'a>(
         "-lr" => o.max_depth = number(it, "-lr")? as i32,
         "-lw" => o.min_weight = number(it, "-lw")?,
         "-st" => o.specular_threshold = number(it, "-st")?,
-        // Accepted for compatibility: radc tests every shadow (-dt 0), always follows
-        // relayed paths (-dp), and the rest only matter for indirect light.
         "-dr" => o.relays = number(it, "-dr")?.max(0.0) as u32,
+        // -dp sets how densely Radiance pretests relayed source paths; radc follows
+        // every relayed path, which is what the pretest approximates: no effect on values.
+        "-dp" => {
+            number(it, arg)?;
+        }
         "-me" => {
             o.medium = Vec3::new(number(it, "-me")?, number(it, "-me")?, number(it, "-me")?)
                 .max(Vec3::ZERO)
@@ -79,20 +154,34 @@ pub(super) fn render_option<'a>(
                 return Err("a scattering medium (-ma > 0) is not implemented yet; -me is".into());
             }
         }
+        // The scattering medium's eccentricity and sampling distance: without an
+        // albedo (refused above) nothing scatters, so they change nothing.
         "-mg" | "-ms" => {
             number(it, arg)?;
         }
-        // The irradiance cache's options: radc does not cache (every ambient value is
-        // computed, Radiance's -aa 0), so they change nothing.
-        "-dt" | "-dc" | "-dp" | "-ss" | "-aa" | "-ar" | "-aw" => {
+        "-aa" => unmodelled.cache_accuracy = Some(number(it, arg)?),
+        "-ar" | "-aw" => {
+            let v = number(it, arg)?;
+            unmodelled.cache_options.push(format!("{arg} {v}"));
+        }
+        "-ai" | "-ae" | "-aI" | "-aE" => {
+            let v = it.next().ok_or_else(|| format!("{arg} needs a value"))?;
+            unmodelled.cache_options.push(format!("{arg} {v}"));
+        }
+        "-af" => {
+            let v = it.next().ok_or_else(|| format!("{arg} needs a value"))?;
+            unmodelled.ambient_file = Some(v.to_string());
+        }
+        "-dt" => unmodelled.shadow_threshold = Some(number(it, arg)?),
+        // -dc is the certainty of -dt's shadow tests: with every shadow tested (-dt 0),
+        // it changes nothing.
+        "-dc" => {
             number(it, arg)?;
         }
-        "-ai" | "-ae" | "-aI" | "-aE" | "-af" => {
-            it.next().ok_or_else(|| format!("{arg} needs a value"))?;
-        }
+        "-ss" => unmodelled.specular_sampling = Some(number(it, arg)?),
+        s if switch(s, "-u", &mut unmodelled.uncorrelated) => {}
         s if switch(s, "-dv", &mut o.direct_visible) => {}
         s if switch(s, "-dx", &mut o.exact_sources) => {}
-        s if s.starts_with("-u") => {}
         _ => return Ok(false),
     }
     o.russian_roulette = o.samples_randomly();

@@ -18,7 +18,7 @@ use radc_renderer::{Options, Tracer, picture};
 
 use super::USAGE_ERROR;
 use super::load::{load_scene, report_functions};
-use super::options::{number, render_option};
+use super::options::{Unmodelled, number, render_option};
 
 const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
 [-vv deg] [-x res] [-y res] [-pa aspect] [-ab N] [-ad N] [-as N] [-av r g b] [-dj frac] [-dx+] [-e errfile] \
@@ -38,6 +38,8 @@ struct Args {
     warnings: bool,
     /// `--allow-commands`: run `!` lines other than the built-in generators.
     allow_commands: bool,
+    /// Options given that radc does not honour, reported as warnings.
+    unmodelled: Unmodelled,
 }
 
 impl Args {
@@ -83,6 +85,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         scenes: Vec::new(),
         warnings: true,
         allow_commands: false,
+        unmodelled: Unmodelled::default(),
     };
     let words: Vec<&str> = args.iter().map(String::as_str).collect();
     let mut it = words.iter().copied().enumerate().peekable();
@@ -109,9 +112,22 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 }
             }
             "-pa" => a.pixel_aspect = number(&mut it, arg)?,
-            // rpict's sampling options: radc always traces one ray per pixel centre.
-            "-pj" | "-ps" | "-pt" | "-pm" | "-pd" | "-t" | "-n" => {
+            "-pj" => a.unmodelled.pixel_jitter(number(&mut it, arg)?),
+            // Adaptive sampling (-ps spacing, -pt its tolerance): radc traces every
+            // pixel, the limit -ps 1 reaches; -t is progress reporting; -n threads.
+            "-ps" | "-pt" | "-t" | "-n" => {
                 number(&mut it, arg)?;
+            }
+            // Motion blur and depth of field change the picture: refused until modelled.
+            "-pm" | "-pd" => {
+                if number(&mut it, arg)? > 0.0 {
+                    let what = if arg == "-pm" {
+                        "motion blur"
+                    } else {
+                        "depth of field"
+                    };
+                    return Err(format!("{arg}: {what} is not implemented (only {arg} 0)"));
+                }
             }
             "-o" => a
                 .outputs
@@ -119,7 +135,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             "--allow-commands" => a.allow_commands = true,
             "-e" => a.errors = Some(PathBuf::from(it.next().ok_or("-e needs a file name")?)),
             s if super::options::switch(s, "-w", &mut a.warnings) => {}
-            s if render_option(s, &mut it, &mut a.options)? => {}
+            s if render_option(s, &mut it, &mut a.options, &mut a.unmodelled)? => {}
             "-help" | "--help" => return Err(String::new()),
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option '{s}'")),
             path => a.scenes.push(PathBuf::from(path)),
@@ -154,6 +170,11 @@ fn run_parsed(args: &[String]) -> ExitCode {
             path.display()
         );
         return ExitCode::from(USAGE_ERROR);
+    }
+    if a.warnings {
+        for w in a.unmodelled.warnings(&a.options) {
+            errln!("radc render: warning: {w}");
+        }
     }
     if let Some(code) = picture_to_png(&a) {
         return code;

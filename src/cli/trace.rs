@@ -17,7 +17,7 @@ use radc_renderer::{Options, Tracer};
 
 use super::USAGE_ERROR;
 use super::load::{load_scene, report_functions};
-use super::options::{number, render_option, switch, thread_count, with_threads};
+use super::options::{Unmodelled, number, render_option, switch, thread_count, with_threads};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
 [-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
@@ -32,6 +32,8 @@ struct Args {
     warnings: bool,
     /// `--allow-commands`: run `!` lines other than the built-in generators.
     allow_commands: bool,
+    /// Options given that radc does not honour, reported as warnings.
+    unmodelled: Unmodelled,
 }
 
 impl Args {
@@ -59,6 +61,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         scenes: Vec::new(),
         warnings: true,
         allow_commands: false,
+        unmodelled: Unmodelled::default(),
     };
     let mut it = args.iter().map(String::as_str).peekable();
     while let Some(arg) = it.next() {
@@ -85,7 +88,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 }
             }
             s if switch(s, "-i", &mut a.options.irradiance_at_hits) => {}
-            s if render_option(s, &mut it, &mut a.options)? => {}
+            s if render_option(s, &mut it, &mut a.options, &mut a.unmodelled)? => {}
             s if s.starts_with("-o") => a.spec.outputs = Output::parse(&s[2..])?,
             s if s.starts_with("-f") => {
                 let f: Vec<char> = s[2..].chars().collect();
@@ -125,6 +128,11 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
+    if a.warnings {
+        for w in a.unmodelled.warnings(&a.options) {
+            eprintln!("radc trace: warning: {w}");
+        }
+    }
     let mut scene = match load_scene(&a.scenes, "trace", a.load_options()) {
         Ok(s) => s,
         Err(code) => return code,
