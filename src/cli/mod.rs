@@ -6,6 +6,7 @@ mod error_file;
 mod build;
 mod calc;
 mod check;
+mod defaults;
 mod doc;
 mod fmt;
 // `gen` is a reserved word in edition 2024, so the file is named for the task and the

@@ -18,7 +18,7 @@ use radc_renderer::{Options, Tracer, picture};
 
 use super::USAGE_ERROR;
 use super::load::{load_scene, report_functions};
-use super::options::{Unmodelled, number, render_option};
+use super::options::{Query, Unmodelled, expand_option_files, number, render_option, version_line};
 
 const USAGE: &str = "usage: radc render [-vf file] [-vt{v|l|h|a|c|s}] [-vp x y z] [-vd x y z] [-vu x y z] [-vh deg] \
 [-vv deg] [-x res] [-y res] [-pa aspect] [-ab N] [-ad N] [-as N] [-av r g b] [-dj frac] [-dx+] [-e errfile] \
@@ -40,6 +40,8 @@ struct Args {
     allow_commands: bool,
     /// Options given that radc does not honour, reported as warnings.
     unmodelled: Unmodelled,
+    /// `-version` or `-defaults`: print instead of rendering.
+    query: Option<Query>,
 }
 
 impl Args {
@@ -86,6 +88,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         warnings: true,
         allow_commands: false,
         unmodelled: Unmodelled::default(),
+        query: None,
     };
     let words: Vec<&str> = args.iter().map(String::as_str).collect();
     let mut it = words.iter().copied().enumerate().peekable();
@@ -112,6 +115,10 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                 }
             }
             "-pa" => a.pixel_aspect = number(&mut it, arg)?,
+            s if Query::of(s).is_some() => {
+                a.query = Query::of(s);
+                return Ok(a);
+            }
             "-pj" => a.unmodelled.pixel_jitter(number(&mut it, arg)?),
             // Adaptive sampling (-ps spacing, -pt its tolerance): radc traces every
             // pixel, the limit -ps 1 reaches; -t is progress reporting; -n threads.
@@ -148,7 +155,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    super::options::with_threads(super::options::thread_count(args), || run_parsed(args))
+    let args = match expand_option_files(args) {
+        Ok(args) => args,
+        Err(e) => {
+            eprintln!("radc render: {e}");
+            return ExitCode::from(USAGE_ERROR);
+        }
+    };
+    super::options::with_threads(super::options::thread_count(&args), || run_parsed(&args))
 }
 
 fn run_parsed(args: &[String]) -> ExitCode {
@@ -162,6 +176,19 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
+    match a.query {
+        Some(Query::Version) => {
+            println!("{}", version_line());
+            return ExitCode::SUCCESS;
+        }
+        Some(Query::Defaults) => {
+            let text =
+                super::defaults::render(&a.view, a.x, a.y, a.pixel_aspect, a.warnings, &a.options);
+            print!("{text}");
+            return ExitCode::SUCCESS;
+        }
+        None => {}
+    }
     if let Some(path) = &a.errors
         && let Err(e) = super::error_file::redirect(path)
     {

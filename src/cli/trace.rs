@@ -17,7 +17,10 @@ use radc_renderer::{Options, Tracer};
 
 use super::USAGE_ERROR;
 use super::load::{load_scene, report_functions};
-use super::options::{Unmodelled, number, render_option, switch, thread_count, with_threads};
+use super::options::{
+    Query, Unmodelled, expand_option_files, number, render_option, switch, thread_count,
+    version_line, with_threads,
+};
 
 const USAGE: &str = "usage: radc trace [-h] [-I] [-o spec] [-f{a|f|d}{a|f|d}] [-ab N] [-ad N] [-as N] [-av r g b] \
 [-ds f] [-dj f] [-dx+] [-lr n] [-lw f] [-st f] [-bv] scene.rad...";
@@ -34,6 +37,10 @@ struct Args {
     allow_commands: bool,
     /// Options given that radc does not honour, reported as warnings.
     unmodelled: Unmodelled,
+    /// `-o`'s letters, as given (for `-defaults`).
+    output_letters: String,
+    /// `-version` or `-defaults`: print instead of tracing.
+    query: Option<Query>,
 }
 
 impl Args {
@@ -62,6 +69,8 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         warnings: true,
         allow_commands: false,
         unmodelled: Unmodelled::default(),
+        output_letters: "v".into(),
+        query: None,
     };
     let mut it = args.iter().map(String::as_str).peekable();
     while let Some(arg) = it.next() {
@@ -89,7 +98,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             }
             s if switch(s, "-i", &mut a.options.irradiance_at_hits) => {}
             s if render_option(s, &mut it, &mut a.options, &mut a.unmodelled)? => {}
-            s if s.starts_with("-o") => a.spec.outputs = Output::parse(&s[2..])?,
+            s if Query::of(s).is_some() => {
+                a.query = Query::of(s);
+                return Ok(a);
+            }
+            s if s.starts_with("-o") => {
+                a.spec.outputs = Output::parse(&s[2..])?;
+                a.output_letters = s[2..].to_string();
+            }
             s if s.starts_with("-f") => {
                 let f: Vec<char> = s[2..].chars().collect();
                 let (i, o) = match f.as_slice() {
@@ -114,7 +130,14 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    with_threads(thread_count(args), || run_parsed(args))
+    let args = match expand_option_files(args) {
+        Ok(args) => args,
+        Err(e) => {
+            eprintln!("radc trace: {e}");
+            return ExitCode::from(USAGE_ERROR);
+        }
+    };
+    with_threads(thread_count(&args), || run_parsed(&args))
 }
 
 fn run_parsed(args: &[String]) -> ExitCode {
@@ -128,6 +151,27 @@ fn run_parsed(args: &[String]) -> ExitCode {
             return ExitCode::from(USAGE_ERROR);
         }
     };
+    match a.query {
+        Some(Query::Version) => {
+            println!("{}", version_line());
+            return ExitCode::SUCCESS;
+        }
+        Some(Query::Defaults) => {
+            let settings = super::defaults::TraceSettings {
+                warnings: a.warnings,
+                threads: thread_count(args),
+                x: a.spec.x_res,
+                y: a.spec.y_res,
+                limit_distance: a.spec.limit_distance,
+                header: a.header,
+                formats: (a.spec.input.letter(), a.spec.output.letter()),
+                outputs: &a.output_letters,
+            };
+            print!("{}", super::defaults::trace(&settings, &a.options));
+            return ExitCode::SUCCESS;
+        }
+        None => {}
+    }
     if a.warnings {
         for w in a.unmodelled.warnings(&a.options) {
             eprintln!("radc trace: warning: {w}");

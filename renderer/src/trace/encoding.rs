@@ -23,6 +23,16 @@ impl RayEncoding {
         }
     }
 
+    /// The `-f` letter.
+    pub fn letter(self) -> char {
+        match self {
+            RayEncoding::Ascii => 'a',
+            RayEncoding::Float => 'f',
+            RayEncoding::Double => 'd',
+            RayEncoding::Color => 'c',
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             RayEncoding::Ascii => "ascii",
