@@ -7,6 +7,9 @@ mod cli;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    cli::dispatch(&args)
+    // Arguments that are not UTF-8 are taken lossily rather than panicking.
+    let mut argv = std::env::args_os().map(|a| a.to_string_lossy().into_owned());
+    let argv0 = argv.next().unwrap_or_default();
+    let args: Vec<String> = argv.collect();
+    cli::main(&argv0, &args)
 }

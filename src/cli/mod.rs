@@ -17,6 +17,7 @@ mod load;
 mod lsp;
 mod options;
 mod picture_tools;
+mod programs;
 mod render;
 mod report;
 mod trace;
@@ -155,6 +156,11 @@ const COMMANDS: &[Command] = &[
         run: doc::explain,
     },
     Command {
+        name: "links",
+        summary: "make links named rtrace, oconv, rcalc, ... to radc in a folder for PATH",
+        run: programs::links,
+    },
+    Command {
         name: "help",
         summary: "list the commands",
         run: help,
@@ -162,6 +168,15 @@ const COMMANDS: &[Command] = &[
 ];
 
 pub const USAGE_ERROR: u8 = 2;
+
+/// The program's entry: called by a Radiance program's name (a link made by `radc
+/// links`), radc behaves as that program; otherwise the first argument names the command.
+pub fn main(argv0: &str, args: &[String]) -> ExitCode {
+    match programs::called_as(argv0) {
+        Some(program) => programs::run(program, args),
+        None => dispatch(args),
+    }
+}
 
 pub fn dispatch(args: &[String]) -> ExitCode {
     let Some(name) = args.first() else {
