@@ -4,6 +4,7 @@
 //! expanded. Expanded text becomes a source file of its own so diagnostics inside it
 //! can be shown against it.
 
+use std::cell::{Cell, RefCell};
 use std::path::{Path, PathBuf};
 
 use radc_generators::expansion::expansion;
@@ -11,6 +12,7 @@ use radc_lang::FileId;
 use radc_lang::scene::{CommandExpander, Expansion};
 use radc_lang::search_path::{Policy, SearchPath};
 
+use crate::bundle::{RecordedExpansion, RecordedOutcome};
 use crate::generator_host::GeneratorHost;
 use crate::pending::PendingSources;
 
@@ -19,6 +21,11 @@ pub struct Commands<'a> {
     scene_dirs: Vec<(FileId, PathBuf)>,
     allow_commands: bool,
     pending: &'a PendingSources,
+    /// Every expansion made, for a scene bundle (`crate::bundle`).
+    recorded: RefCell<Vec<RecordedExpansion>>,
+    /// Reading a bundle: the expansions recorded when it was built, answered in order
+    /// instead of running anything.
+    replay: Option<(Vec<RecordedExpansion>, Cell<usize>)>,
 }
 
 impl<'a> Commands<'a> {
@@ -31,7 +38,91 @@ impl<'a> Commands<'a> {
             scene_dirs,
             allow_commands,
             pending,
+            recorded: RefCell::new(Vec::new()),
+            replay: None,
         }
+    }
+
+    /// Commands that answer from `recorded` (a bundle's), running nothing.
+    pub fn replaying(
+        scene_dirs: Vec<(FileId, PathBuf)>,
+        pending: &'a PendingSources,
+        recorded: Vec<RecordedExpansion>,
+    ) -> Self {
+        Commands {
+            replay: Some((recorded, Cell::new(0))),
+            ..Commands::new(scene_dirs, pending, false)
+        }
+    }
+
+    /// The expansions made so far, in order.
+    pub fn into_recorded(self) -> Vec<RecordedExpansion> {
+        self.recorded.into_inner()
+    }
+
+    /// The next recorded expansion, if it is of `command` in `dir`.
+    fn replayed(&self, command: &str, dir: &Path) -> Option<Expansion> {
+        let (recorded, next) = self.replay.as_ref()?;
+        // In reading order, the same commands as when it was built (the folders differ:
+        // a bundle's are absolute).
+        let found = recorded.get(next.get()).filter(|r| r.command == command);
+        let Some(r) = found else {
+            return Some(Expansion::NotExpanded {
+                reason: "the scene file holds no output for this command (rebuild it)".into(),
+            });
+        };
+        next.set(next.get() + 1);
+        let register = |text: &str| {
+            self.pending
+                .add(format!("!{command}"), text.to_string(), dir.to_path_buf())
+        };
+        Some(match &r.outcome {
+            RecordedOutcome::Text(text) => Expansion::Text {
+                file: register(text),
+                text: text.clone(),
+            },
+            RecordedOutcome::Partial {
+                text,
+                message,
+                hint,
+            } => Expansion::Partial {
+                file: register(text),
+                text: text.clone(),
+                message: message.clone(),
+                hint: hint.clone(),
+            },
+            RecordedOutcome::Failed { message, hint } => Expansion::Failed {
+                message: message.clone(),
+                hint: hint.clone(),
+            },
+        })
+    }
+
+    fn record(&self, command: &str, dir: &Path, expansion: &Expansion) {
+        let outcome = match expansion {
+            Expansion::Text { text, .. } => RecordedOutcome::Text(text.clone()),
+            Expansion::Partial {
+                text,
+                message,
+                hint,
+                ..
+            } => RecordedOutcome::Partial {
+                text: text.clone(),
+                message: message.clone(),
+                hint: hint.clone(),
+            },
+            Expansion::Failed { message, hint } => RecordedOutcome::Failed {
+                message: message.clone(),
+                hint: hint.clone(),
+            },
+            // A scene with these is refused: nothing to keep.
+            Expansion::NotExpanded { .. } | Expansion::Cycle { .. } => return,
+        };
+        self.recorded.borrow_mut().push(RecordedExpansion {
+            command: command.to_string(),
+            dir: dir.display().to_string(),
+            outcome,
+        });
     }
 
     fn dir_of(&self, file: FileId) -> PathBuf {
@@ -94,6 +185,12 @@ impl<'a> Commands<'a> {
 
 impl CommandExpander for Commands<'_> {
     fn expand(&self, command: &str, from: FileId, _depth: u32) -> Expansion {
-        self.run(command, &self.dir_of(from))
+        let dir = self.dir_of(from);
+        if let Some(replayed) = self.replayed(command, &dir) {
+            return replayed;
+        }
+        let expansion = self.run(command, &dir);
+        self.record(command, &dir, &expansion);
+        expansion
     }
 }

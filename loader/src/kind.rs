@@ -1,5 +1,5 @@
 //! What a file named as a scene is, from its first bytes: scene text, a compiled scene
-//! (`radc build`), a Radiance octree (oconv) or a Radiance picture, so each is loaded or
+//! or a scene bundle (`radc build`), a Radiance octree (oconv) or a Radiance picture, so each is loaded or
 //! refused by name instead of read as text.
 
 use std::io::Read;
@@ -11,6 +11,8 @@ use radc_renderer::scene_file;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
     Compiled,
+    /// A scene's texts as `radc build` stored them ([`crate::bundle`]).
+    Bundle,
     Octree,
     Picture,
     Text,
@@ -55,7 +57,9 @@ pub fn file_kind(path: &Path) -> Kind {
         .unwrap_or(0);
     let head = &head[..n];
     let text = String::from_utf8_lossy(head);
-    if scene_file::looks_compiled(head) || path.extension().is_some_and(|e| e == "rsc") {
+    if crate::bundle::looks_bundled(head) {
+        Kind::Bundle
+    } else if scene_file::looks_compiled(head) || path.extension().is_some_and(|e| e == "rsc") {
         Kind::Compiled
     } else if text.starts_with("#?RADIANCE") && text.contains("FORMAT=Radiance_octree") {
         Kind::Octree

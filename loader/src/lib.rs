@@ -5,6 +5,7 @@
 //! scenes (`radc build`); and pictures and octrees told apart from scene text
 //! ([`kind`]). `lang` does no IO: this crate is where scene text meets the disk.
 
+pub mod bundle;
 pub mod commands;
 pub mod generator_host;
 pub mod kind;
@@ -14,7 +15,8 @@ pub mod read;
 pub mod scene_files;
 pub mod sources;
 
+pub use bundle::SceneBundle;
 pub use kind::{Kind, file_kind, picture_description};
 pub use load::{LoadError, LoadOptions, SceneLoad, load_scene};
-pub use read::{read_scene, read_source};
+pub use read::{read_bundle, read_scene, read_scene_bundled, read_source};
 pub use sources::{SourceText, Sources};

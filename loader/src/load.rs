@@ -10,8 +10,9 @@ use radc_lang::scene::Keep;
 use radc_lang::{Diagnostic, Severity};
 use radc_renderer::{Scene, scene_file};
 
+use crate::bundle::SceneBundle;
 use crate::kind::{Kind, file_kind, picture_description};
-use crate::read::read_scene;
+use crate::read::{read_bundle, read_scene_bundled};
 use crate::sources::Sources;
 
 /// How scene files are read.
@@ -38,26 +39,50 @@ pub struct SceneLoad {
     /// Sorted by file and position; warnings only if asked for.
     pub diagnostics: Vec<Diagnostic>,
     pub scene: Result<Scene, LoadError>,
+    /// The scene as read (its texts and commands' outputs), for `radc build` to store
+    /// where a compiled scene cannot hold it; `None` when a compiled scene was loaded.
+    pub bundle: Option<SceneBundle>,
+}
+
+/// A scene file `radc build` wrote.
+enum Stored {
+    Scene(Box<Scene>),
+    Bundle(SceneBundle),
 }
 
 /// Loads the scene `paths` name (see the module doc).
 pub fn load_scene(paths: &[PathBuf], options: LoadOptions) -> SceneLoad {
     let mut sources = Sources::default();
-    if let Some(compiled) = load_compiled(paths) {
-        return SceneLoad {
-            sources,
-            diagnostics: Vec::new(),
-            scene: compiled,
-        };
-    }
     let mut diags = Vec::new();
-    let ir = read_scene(
-        paths,
-        options.allow_commands,
-        Keep::Everything,
-        &mut sources,
-        &mut diags,
-    );
+    let (ir, bundle) = match load_compiled(paths) {
+        Some(Ok(Stored::Scene(scene))) => {
+            return SceneLoad {
+                sources,
+                diagnostics: Vec::new(),
+                scene: Ok(*scene),
+                bundle: None,
+            };
+        }
+        Some(Err(e)) => {
+            return SceneLoad {
+                sources,
+                diagnostics: Vec::new(),
+                scene: Err(e),
+                bundle: None,
+            };
+        }
+        Some(Ok(Stored::Bundle(bundle))) => {
+            let ir = read_bundle(&bundle, Keep::Everything, &mut sources, &mut diags);
+            (ir, bundle)
+        }
+        None => read_scene_bundled(
+            paths,
+            options.allow_commands,
+            Keep::Everything,
+            &mut sources,
+            &mut diags,
+        ),
+    };
     diags.sort_by_key(|d| (d.span.file, d.span.start));
     // A `!` command's output is part of the scene Radiance renders; without it the
     // numbers would be silently wrong.
@@ -100,13 +125,14 @@ pub fn load_scene(paths: &[PathBuf], options: LoadOptions) -> SceneLoad {
         sources,
         diagnostics: diags,
         scene,
+        bundle: Some(bundle),
     }
 }
 
 /// The compiled scene, if the scene arguments name one (by its magic bytes or a `.rsc`
 /// extension); `None` when they are scene text. Octrees and pictures are refused by
 /// name rather than parsed as text.
-fn load_compiled(paths: &[PathBuf]) -> Option<Result<Scene, LoadError>> {
+fn load_compiled(paths: &[PathBuf]) -> Option<Result<Stored, LoadError>> {
     let refused = |m: String| Some(Err(LoadError::Refused(vec![m])));
     let kinds: Vec<Kind> = paths.iter().map(|p| file_kind(p)).collect();
     let first = |kind: Kind| {
@@ -131,15 +157,24 @@ fn load_compiled(paths: &[PathBuf]) -> Option<Result<Scene, LoadError>> {
             p.display()
         ));
     }
-    let compiled = first(Kind::Compiled)?;
+    let compiled = first(Kind::Compiled).or_else(|| first(Kind::Bundle))?;
     if paths.len() > 1 {
         return Some(Err(LoadError::Usage(format!(
             "{}: a compiled scene must be the only scene argument",
             compiled.display()
         ))));
     }
+    let bundled = kinds.first() == Some(&Kind::Bundle);
     let loaded = std::fs::read(compiled)
         .map_err(|e| format!("cannot read it: {e}"))
-        .and_then(|bytes| scene_file::decode(&bytes).map_err(|e| e.to_string()));
+        .and_then(|bytes| {
+            if bundled {
+                SceneBundle::decode(&bytes).map(Stored::Bundle)
+            } else {
+                scene_file::decode(&bytes)
+                    .map(|s| Stored::Scene(Box::new(s)))
+                    .map_err(|e| e.to_string())
+            }
+        });
     Some(loaded.map_err(|e| LoadError::Refused(vec![format!("{}: {e}", compiled.display())])))
 }

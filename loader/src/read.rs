@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use radc_lang::scene::{self, Keep, Lowering};
 use radc_lang::{Diagnostic, FileId};
 
+use crate::bundle::{BundledFile, RecordedExpansion, SceneBundle};
 use crate::commands::Commands;
 use crate::pending::PendingSources;
 use crate::scene_files::SceneFiles;
@@ -22,8 +23,22 @@ pub fn read_scene(
     sources: &mut Sources,
     diags: &mut Vec<Diagnostic>,
 ) -> scene::ir::Scene {
+    read_scene_bundled(paths, allow_commands, keep, sources, diags).0
+}
+
+/// [`read_scene`], and the scene as a [`SceneBundle`]: its files' texts and its
+/// commands' outputs, enough to read the same scene again without the disk's scene
+/// files or running anything.
+pub fn read_scene_bundled(
+    paths: &[PathBuf],
+    allow_commands: bool,
+    keep: Keep,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) -> (scene::ir::Scene, SceneBundle) {
     let mut read = Vec::new();
     let mut dirs = Vec::new();
+    let mut files = Vec::new();
     for path in paths {
         let mut found = Vec::new();
         let Some(id) = read_source(path, sources, &mut found) else {
@@ -31,11 +46,66 @@ pub fn read_scene(
             continue;
         };
         let warn_unused = path.extension().is_none_or(|x| x != "mat");
-        dirs.push((id, path.parent().map(Path::to_path_buf).unwrap_or_default()));
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        files.push(BundledFile {
+            name: path.display().to_string(),
+            dir: absolute_dir(&dir).display().to_string(),
+            text: sources.get(id).map_or_else(String::new, |s| s.text.clone()),
+            warn_unused,
+        });
+        dirs.push((id, dir));
         read.push((id, found, warn_unused));
     }
+    let (scene, expansions) = lower(
+        read,
+        dirs,
+        Expanding::Run { allow_commands },
+        keep,
+        sources,
+        diags,
+    );
+    (scene, SceneBundle { files, expansions })
+}
+
+/// Reads the scene a [`SceneBundle`] holds, as [`read_scene`] read it when it was
+/// built: its commands' outputs come from the bundle, nothing is run.
+pub fn read_bundle(
+    bundle: &SceneBundle,
+    keep: Keep,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) -> scene::ir::Scene {
+    let mut read = Vec::new();
+    let mut dirs = Vec::new();
+    for f in &bundle.files {
+        let id = sources.add(f.name.clone(), f.text.clone());
+        dirs.push((id, PathBuf::from(&f.dir)));
+        read.push((id, Vec::new(), f.warn_unused));
+    }
+    let replay = Expanding::Replay(bundle.expansions.clone());
+    lower(read, dirs, replay, keep, sources, diags).0
+}
+
+/// How `!` lines are answered.
+enum Expanding {
+    Run { allow_commands: bool },
+    Replay(Vec<RecordedExpansion>),
+}
+
+/// Lowers the files read, in order, as one scene; the expansions made, in order.
+fn lower(
+    read: Vec<(FileId, Vec<Diagnostic>, bool)>,
+    dirs: Vec<(FileId, PathBuf)>,
+    expanding: Expanding,
+    keep: Keep,
+    sources: &mut Sources,
+    diags: &mut Vec<Diagnostic>,
+) -> (scene::ir::Scene, Vec<RecordedExpansion>) {
     let pending = PendingSources::new(sources.next_id().0);
-    let commands = Commands::new(dirs.clone(), &pending, allow_commands);
+    let commands = match expanding {
+        Expanding::Run { allow_commands } => Commands::new(dirs.clone(), &pending, allow_commands),
+        Expanding::Replay(recorded) => Commands::replaying(dirs.clone(), &pending, recorded),
+    };
     let lookup = SceneFiles::new(dirs, &pending);
     let mut lowering = Lowering::new(&lookup, &commands, keep);
     for (id, found, warn_unused) in read {
@@ -46,12 +116,24 @@ pub fn read_scene(
         }));
     }
     let (scene, more) = lowering.finish();
-    drop((commands, lookup));
+    drop(lookup);
+    let recorded = commands.into_recorded();
     for (name, text) in pending.into_sources() {
         sources.add(name, text);
     }
     diags.extend(more);
-    scene
+    (scene, recorded)
+}
+
+/// `dir` made absolute (the current folder for an empty one), so a bundle read from
+/// another folder finds what the scene's folder held.
+fn absolute_dir(dir: &Path) -> PathBuf {
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf())
 }
 
 /// Reads a file the user named and decodes it, registering it as the next source.

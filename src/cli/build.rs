@@ -2,7 +2,9 @@
 //! `radc trace` do: scenes with errors, or with what the renderer does not model, are
 //! refused with their diagnostics), compiles it (reachable surfaces only, BVH built)
 //! and writes the compiled scene file (`radc_renderer::scene_file`), which `render`
-//! and `trace` load in place of the `.rad` files.
+//! and `trace` load in place of the `.rad` files. A scene with functions (patterns,
+//! textures) is stored as read instead (`radc_loader::bundle`): its functions are
+//! compiled when it is rendered.
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -11,7 +13,7 @@ use std::process::ExitCode;
 use radc_renderer::scene_file;
 
 use super::USAGE_ERROR;
-use super::load::load_scene;
+use super::load::load_scene_bundled;
 
 const USAGE: &str = "usage: radc build [-w] [-f] [-n objlim] [-r maxres] [-b xmin ymin zmin size] \
 [-o scene.rsc] scene.rad...";
@@ -95,18 +97,19 @@ fn run_parsed(args: &[String]) -> ExitCode {
         eprintln!("radc build: not writing a binary scene to a terminal; use -o scene.rsc");
         return ExitCode::from(USAGE_ERROR);
     }
-    let scene = match load_scene(&a.scenes, "build", a.load_options()) {
+    let (scene, bundle) = match load_scene_bundled(&a.scenes, "build", a.load_options()) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if scene.functions.is_some() {
-        eprintln!(
-            "radc build: the scene's patterns are compiled at render time, and a compiled \
-             scene file cannot hold them yet; trace or render the scene files instead"
-        );
-        return ExitCode::from(1);
-    }
-    let bytes = match scene_file::encode(&scene) {
+    // The scene's functions are compiled when it is rendered, and a compiled scene
+    // cannot hold them: such a scene is stored as it was read (its texts and its
+    // commands' outputs), and read, checked and compiled again when loaded.
+    let encoded = match (&scene.functions, bundle) {
+        (Some(_), Some(bundle)) => bundle.encode(),
+        (Some(_), None) => Err("a compiled scene with functions cannot be stored".to_string()),
+        (None, _) => scene_file::encode(&scene).map_err(|e| e.to_string()),
+    };
+    let bytes = match encoded {
         Ok(b) => b,
         Err(e) => {
             eprintln!("radc build: {e}");

@@ -77,7 +77,7 @@ pub fn run(args: &[String]) -> ExitCode {
     let mut sources = Sources::default();
     let mut diags = Vec::new();
     let mut scene_files = Vec::new();
-    let mut pictures = 0;
+    let mut not_scenes = 0;
     for path in &opts.paths {
         if path.is_dir() {
             let mut found = Vec::new();
@@ -108,7 +108,14 @@ pub fn run(args: &[String]) -> ExitCode {
                  'radc pvalue' read pictures",
                 path.display()
             );
-            pictures += 1;
+            not_scenes += 1;
+        } else if let Some(what) = stored_scene(path) {
+            eprintln!(
+                "radc check: {}: is {what}, not scene text; check the scene files it was \
+                 made from",
+                path.display()
+            );
+            not_scenes += 1;
         } else {
             scene_files.push(path.clone());
         }
@@ -132,7 +139,7 @@ pub fn run(args: &[String]) -> ExitCode {
         .filter(|d| d.severity == Severity::Error)
         .count();
     let warnings = diags.len() - scene_errors;
-    let errors = scene_errors + pictures;
+    let errors = scene_errors + not_scenes;
     if opts.format == ReportStyle::Human && !opts.quiet {
         // A closed pipe (`radc check ... | head`) is not an error worth a panic.
         let _ = writeln!(
@@ -185,4 +192,16 @@ fn check_cal(path: &Path, sources: &mut Sources, diags: &mut Vec<Diagnostic>) {
         return;
     };
     diags.extend(radc_lang::cal::check::check_file(file, text));
+}
+
+/// What a scene argument is when it is not scene text: a scene file `radc build` wrote,
+/// or a Radiance octree (read as text, either would be junk diagnostics).
+fn stored_scene(path: &std::path::Path) -> Option<&'static str> {
+    match radc_loader::file_kind(path) {
+        radc_loader::Kind::Compiled | radc_loader::Kind::Bundle => {
+            Some("a scene file made by 'radc build' (or radc as oconv)")
+        }
+        radc_loader::Kind::Octree => Some("a Radiance octree (made by oconv)"),
+        radc_loader::Kind::Picture | radc_loader::Kind::Text => None,
+    }
 }

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use radc_loader::{LoadError, LoadOptions};
+use radc_loader::{LoadError, LoadOptions, SceneBundle};
 use radc_renderer::Scene;
 
 use super::USAGE_ERROR;
@@ -16,20 +16,33 @@ pub(super) fn load_scene(
     command: &str,
     options: LoadOptions,
 ) -> Result<Scene, ExitCode> {
+    load_scene_bundled(paths, command, options).map(|(scene, _)| scene)
+}
+
+/// [`load_scene`], and the scene as read, for `radc build` to store when a compiled
+/// scene cannot hold it (`None` when a compiled scene was loaded).
+pub(super) fn load_scene_bundled(
+    paths: &[PathBuf],
+    command: &str,
+    options: LoadOptions,
+) -> Result<(Scene, Option<SceneBundle>), ExitCode> {
     let load = radc_loader::load_scene(paths, options);
     report::eprint(&load.diagnostics, &load.sources);
-    load.scene.map_err(|e| match e {
-        LoadError::Usage(m) => {
-            errln!("radc {command}: {m}");
-            ExitCode::from(USAGE_ERROR)
-        }
-        LoadError::Refused(messages) => {
-            for m in messages {
+    let bundle = load.bundle;
+    load.scene
+        .map(|scene| (scene, bundle))
+        .map_err(|e| match e {
+            LoadError::Usage(m) => {
                 errln!("radc {command}: {m}");
+                ExitCode::from(USAGE_ERROR)
             }
-            ExitCode::from(1)
-        }
-    })
+            LoadError::Refused(messages) => {
+                for m in messages {
+                    errln!("radc {command}: {m}");
+                }
+                ExitCode::from(1)
+            }
+        })
 }
 
 /// Prints what evaluating the scene's functions warned of (once each), as rtrace
