@@ -34,6 +34,7 @@ pub mod small_sources;
 pub mod solid_angle;
 pub mod surfaces;
 pub mod trace;
+pub mod view_rays;
 pub mod virtuals;
 
 pub use integrator::{Options, RayState, Target, Tracer};

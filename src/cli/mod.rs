@@ -21,6 +21,7 @@ mod programs;
 mod render;
 mod report;
 mod trace;
+mod vwrays;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -109,6 +110,11 @@ const COMMANDS: &[Command] = &[
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,
+    },
+    Command {
+        name: "vwrays",
+        summary: "print the rays of a view or of a picture's view, as Radiance's vwrays",
+        run: vwrays::run,
     },
     Command {
         name: "getinfo",

@@ -264,3 +264,24 @@ impl Query {
 pub(super) fn version_line() -> String {
     format!("RADIANCE 6.0a (radc {})", env!("CARGO_PKG_VERSION"))
 }
+
+/// View options from a view file (`-vf`): any words of the file before its first
+/// empty line (so a picture's header works too), view options taken, the rest ignored.
+/// True when the file held a view option.
+pub(super) fn view_file(
+    view: &mut radc_renderer::camera::View,
+    path: &str,
+) -> Result<bool, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read view file '{path}': {e}"))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let head = text.split("\n\n").next().unwrap_or("");
+    let words: Vec<&str> = head.split_whitespace().collect();
+    let mut i = 0;
+    let mut found = false;
+    while i < words.len() {
+        let used = view.option(&words[i..])?;
+        found |= used > 0;
+        i += used.max(1);
+    }
+    Ok(found)
+}

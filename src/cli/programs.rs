@@ -44,6 +44,7 @@ pub(super) const PROGRAMS: &[Program] = &[
         runs_commands: true,
     },
     program("rcalc", "calc"),
+    program("vwrays", "vwrays"),
     program("genbox", "genbox"),
     program("gendaylit", "gendaylit"),
     program("genprism", "genprism"),

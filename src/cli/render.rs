@@ -53,20 +53,6 @@ impl Args {
     }
 }
 
-/// View options from a view file (`-vf`): any words of the file before its first
-/// empty line (so a picture's header works too), view options taken, the rest ignored.
-fn view_file(view: &mut View, path: &str) -> Result<(), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read view file '{path}': {e}"))?;
-    let text = String::from_utf8_lossy(&bytes);
-    let head = text.split("\n\n").next().unwrap_or("");
-    let words: Vec<&str> = head.split_whitespace().collect();
-    let mut i = 0;
-    while i < words.len() {
-        i += view.option(&words[i..])?.max(1);
-    }
-    Ok(())
-}
-
 fn parse_args(args: &[String]) -> Result<Args, String> {
     let mut a = Args {
         view: View::default(),
@@ -102,7 +88,9 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         }
         let mut it = std::iter::from_fn(|| it.next().map(|(_, w)| w));
         match arg {
-            "-vf" => view_file(&mut a.view, it.next().ok_or("-vf needs a file name")?)?,
+            "-vf" => {
+                super::options::view_file(&mut a.view, it.next().ok_or("-vf needs a file name")?)?;
+            }
             "-x" | "-y" => {
                 let v = number(&mut it, arg)?;
                 if !(1.0..=32767.0).contains(&v) {
