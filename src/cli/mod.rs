@@ -6,6 +6,7 @@ mod error_file;
 mod build;
 mod calc;
 mod check;
+mod cnt;
 mod defaults;
 mod doc;
 mod fmt;
@@ -110,6 +111,11 @@ const COMMANDS: &[Command] = &[
         name: "xform",
         summary: "transform a scene, as Radiance's xform",
         run: generate::xform,
+    },
+    Command {
+        name: "cnt",
+        summary: "count through every combination of counters, as Radiance's cnt",
+        run: cnt::run,
     },
     Command {
         name: "vwrays",

@@ -45,6 +45,7 @@ pub(super) const PROGRAMS: &[Program] = &[
     },
     program("rcalc", "calc"),
     program("vwrays", "vwrays"),
+    program("cnt", "cnt"),
     program("genbox", "genbox"),
     program("gendaylit", "gendaylit"),
     program("genprism", "genprism"),
