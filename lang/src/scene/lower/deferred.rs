@@ -56,3 +56,29 @@ impl Lowering<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::lower::tests::{PAINT, check};
+
+    #[test]
+    fn a_modifier_error_counts_only_when_the_modifier_is_used() {
+        let bad = "void plastic bad 0 0 5 1e999 .5 .5 0 0\n";
+        assert_eq!(check(bad).1, vec!["W0304", "W0301"]);
+        assert_eq!(
+            check(&format!("{bad}bad sphere s 0 0 4 0 0 0 1\n")).1,
+            vec!["E0203"]
+        );
+    }
+
+    #[test]
+    fn a_source_error_counts_only_when_its_material_emits_light() {
+        // A zero direction: Radiance stops only when it sets the source up as a light.
+        let source = "source s 0 0 4 0 0 0 .5\n";
+        assert_eq!(check(&format!("{PAINT}paint {source}")).1, vec!["W0304"]);
+        assert_eq!(
+            check(&format!("void light l 0 0 3 1 1 1\nl {source}")).1,
+            vec!["E0203"]
+        );
+    }
+}

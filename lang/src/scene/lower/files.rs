@@ -344,3 +344,77 @@ impl Lowering<'_> {
 
 /// The largest picture read for a render (a 4096x4096 flat RGBE picture is 64 MiB).
 const MAX_PICTURE_BYTES: usize = 256 << 20;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::check_text;
+    use crate::scene::ir::Scene;
+
+    /// Files by name; any other name is missing.
+    struct Files(&'static [(&'static str, &'static str)]);
+
+    impl FileLookup for Files {
+        fn exists(&self, name: &str, _: FileKind, _: FileId) -> bool {
+            self.0.iter().any(|(n, _)| *n == name)
+        }
+
+        fn read(&self, name: &str, _: FileKind, _: FileId) -> Option<String> {
+            let (_, text) = self.0.iter().find(|(n, _)| *n == name)?;
+            Some(text.to_string())
+        }
+
+        fn read_head(
+            &self,
+            name: &str,
+            kind: FileKind,
+            from: FileId,
+            max: usize,
+        ) -> Option<Vec<u8>> {
+            let text = self.read(name, kind, from)?;
+            Some(text.as_bytes().iter().take(max).copied().collect())
+        }
+    }
+
+    const FILES: Files = Files(&[
+        ("picture.cal", ""),
+        ("sky.hdr", "#?RADIANCE\n"),
+        ("photo.jpg", "\u{ff}\u{d8}"),
+        ("flat.dat", "2\n0 1 2\n0 1 2\n1 2 3 4\n"),
+        ("broken.dat", "x\n"),
+    ]);
+
+    fn check(text: &str) -> (Scene, Vec<&'static str>) {
+        let (scene, diags) = check_text(FileId(0), text, &FILES, true);
+        (scene, diags.iter().map(|d| d.code.id).collect())
+    }
+
+    fn picture(name: &str, file: &str) -> String {
+        format!(
+            "void colorpict {name} 7 red green blue {file} picture.cal pic_u pic_v 0 0\n\
+             {name} plastic {name}m 0 0 5 .5 .5 .5 0 0\n{name}m sphere {name}s 0 0 4 0 0 0 1\n"
+        )
+    }
+
+    #[test]
+    fn a_missing_file_is_reported_once_per_name() {
+        let text = picture("a", "missing.hdr") + &picture("b", "missing.hdr");
+        assert_eq!(check(&text).1, vec!["E0305"]);
+        assert!(check(&picture("a", "sky.hdr")).1.is_empty());
+    }
+
+    #[test]
+    fn files_must_be_what_they_claim_to_be() {
+        assert_eq!(check(&picture("a", "photo.jpg")).1, vec!["E0309"]);
+        let data = |file: &str, coords: &str| {
+            let count = 3 + coords.split_whitespace().count();
+            format!(
+                "void brightdata d {count} noop {file} . {coords} 0 0\n\
+                 d plastic m 0 0 5 .5 .5 .5 0 0\nm sphere s 0 0 4 0 0 0 1\n"
+            )
+        };
+        assert_eq!(check(&data("broken.dat", "Px Py")).1, vec!["E0308"]);
+        assert!(check(&data("flat.dat", "Px Py")).1.is_empty());
+        assert_eq!(check(&data("flat.dat", "Px")).1, vec!["E0202"]);
+    }
+}
