@@ -9,9 +9,9 @@
 //! reaching any of these, and runs whose order of reading matters (`-u`, `-in`,
 //! `-on`, input formats, `-p`, binary input, a terminal), stay on one thread.
 
-use super::{Options, Passive, RecordEncoding, Scratch, Stop, evaluate};
-use radc_jit::RecordEngine;
-use radc_jit::interp::{Record, format_outputs};
+use super::{Passive, RecordEncoding, RecordOptions, Scratch, Stop, evaluate};
+use crate::RecordEngine;
+use crate::interp::{Record, format_outputs};
 use radc_lang::cal::Module;
 use radc_lang::cal::deps;
 use radc_lang::cal::eval::Warning;
@@ -26,7 +26,7 @@ const CHUNK_BYTES: usize = 1 << 18;
 const WORKER_STACK: usize = 64 << 20;
 
 /// How many threads the run may use: 1 unless the run and the program allow more.
-pub(super) fn threads_for(module: &Module, o: &Options) -> usize {
+pub(super) fn threads_for(module: &Module, o: &RecordOptions) -> usize {
     let wanted = o
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(8)));
@@ -48,7 +48,7 @@ pub(super) fn threads_for(module: &Module, o: &Options) -> usize {
 
 /// No definition the outputs, `cond` or the `-o` format reach uses `outno`, is a
 /// `:` variable still to be computed, or is a recursive function.
-fn records_are_independent(module: &Module, o: &Options) -> bool {
+fn records_are_independent(module: &Module, o: &RecordOptions) -> bool {
     let mut reached: BTreeSet<_> = module
         .outputs()
         .values()
@@ -76,15 +76,16 @@ fn records_are_independent(module: &Module, o: &Options) -> bool {
 struct ChunkOut {
     bytes: Vec<u8>,
     warnings: Vec<(usize, Vec<Warning>)>,
-    failed: Option<(usize, String, radc_jit::Error)>,
+    failed: Option<(usize, String, crate::Error)>,
 }
 
 /// One input stream on `engines.len()` threads, written as one thread would.
 pub(super) fn run_stream<E: RecordEngine + Send>(
     input: &mut dyn BufRead,
     engines: &mut [E],
-    o: &Options,
+    o: &RecordOptions,
     out: &mut dyn Write,
+    err: &mut dyn Write,
 ) -> Result<(), Stop> {
     let mut chunks: Vec<Vec<u8>> = vec![Vec::new(); engines.len()];
     let mut nrecs = 0u64;
@@ -130,7 +131,7 @@ pub(super) fn run_stream<E: RecordEngine + Send>(
                         failed: Some((
                             0,
                             String::new(),
-                            radc_jit::Error::Eval(radc_lang::cal::eval::EvalError::NotAvailable(
+                            crate::Error::Eval(radc_lang::cal::eval::EvalError::NotAvailable(
                                 "a worker thread".into(),
                             )),
                         )),
@@ -141,7 +142,7 @@ pub(super) fn run_stream<E: RecordEngine + Send>(
             results
         });
         for r in results {
-            write_chunk(out, r, o)?;
+            write_chunk(out, err, r, o)?;
         }
         if at_end {
             return Ok(());
@@ -171,7 +172,12 @@ fn read_chunk(input: &mut dyn BufRead, chunk: &mut Vec<u8>) -> std::io::Result<b
     }
 }
 
-fn run_chunk<E: RecordEngine>(engine: &mut E, chunk: &[u8], first: u64, o: &Options) -> ChunkOut {
+fn run_chunk<E: RecordEngine>(
+    engine: &mut E,
+    chunk: &[u8],
+    first: u64,
+    o: &RecordOptions,
+) -> ChunkOut {
     engine.set_records_before(first);
     let mut done = ChunkOut::default();
     let mut scratch = Scratch::default();
@@ -201,7 +207,12 @@ fn run_chunk<E: RecordEngine>(engine: &mut E, chunk: &[u8], first: u64, o: &Opti
 
 /// Writes a chunk's output with its warnings and error where they came, as the
 /// one-thread loop does (stdout flushed before each message).
-fn write_chunk(out: &mut dyn Write, chunk: ChunkOut, o: &Options) -> Result<(), Stop> {
+fn write_chunk(
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+    chunk: ChunkOut,
+    o: &RecordOptions,
+) -> Result<(), Stop> {
     let mut at = 0;
     let write = |out: &mut dyn Write, bytes: &[u8]| out.write_all(bytes).map_err(|_| Stop::Failed);
     for (offset, warnings) in chunk.warnings {
@@ -210,7 +221,7 @@ fn write_chunk(out: &mut dyn Write, chunk: ChunkOut, o: &Options) -> Result<(), 
         if !o.nowarn {
             let _ = out.flush();
             for w in warnings {
-                eprintln!("{w}");
+                let _ = writeln!(err, "{w}");
             }
         }
     }
@@ -218,7 +229,7 @@ fn write_chunk(out: &mut dyn Write, chunk: ChunkOut, o: &Options) -> Result<(), 
         write(out, &chunk.bytes[at..offset])?;
         let _ = out.write_all(partial.as_bytes());
         let _ = out.flush();
-        eprintln!("{e}");
+        let _ = writeln!(err, "{e}");
         return Err(Stop::Failed);
     }
     write(out, &chunk.bytes[at..])

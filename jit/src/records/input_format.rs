@@ -250,7 +250,7 @@ impl<'a> Matcher<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::calc::format;
+    use crate::records::format;
 
     #[test]
     fn numbers_between_literals() {
