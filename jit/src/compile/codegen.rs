@@ -111,9 +111,9 @@ impl<'m> State<'m> {
         set(&mut flags, "opt_level", "speed")?;
         set(&mut flags, "use_colocated_libcalls", "false")?;
         set(&mut flags, "is_pic", "false")?;
-        // The verifier in debug builds, or when `RADC_JIT_VERIFY` is set (to check
-        // the generated code in release test runs).
-        let verify = cfg!(debug_assertions) || std::env::var_os("RADC_JIT_VERIFY").is_some();
+        // The verifier in debug builds, or when asked for (to check the generated
+        // code in release test runs).
+        let verify = cfg!(debug_assertions) || super::inspect::current().verify;
         set(
             &mut flags,
             "enable_verifier",
@@ -439,26 +439,23 @@ pub fn drain(state: &mut State<'_>) -> Result<(), JitError> {
             Lower::build(b, state, job)?;
         }
         state.instructions += ctx.func.dfg.num_insts();
-        let dump = std::env::var_os("RADC_JIT_DUMP").is_some();
-        if dump {
+        let inspection = super::inspect::current();
+        if inspection.listing.is_some() {
             ctx.set_disasm(true);
         }
         state
             .jit
             .define_function(id, &mut ctx)
             .map_err(|e| JitError::Backend(format!("{e:?}")))?;
-        if let Some(dir) = std::env::var_os("RADC_JIT_CODE_DIR")
+        if let Some(dir) = &inspection.code_dir
             && let Some(c) = ctx.compiled_code()
         {
-            let _ = std::fs::write(
-                std::path::Path::new(&dir).join(format!("f{}.bin", id.as_u32())),
-                c.code_buffer(),
-            );
+            let _ = std::fs::write(dir.join(format!("f{}.bin", id.as_u32())), c.code_buffer());
         }
-        if dump {
-            eprintln!("{}", ctx.func.display());
+        if let Some(listing) = inspection.listing {
+            listing(&ctx.func.display().to_string());
             if let Some(c) = ctx.compiled_code() {
-                eprintln!("{}", c.vcode.clone().unwrap_or_default());
+                listing(&c.vcode.clone().unwrap_or_default());
             }
         }
         state.jit.clear_context(&mut ctx);

@@ -23,6 +23,7 @@
 
 mod codegen;
 mod host;
+pub mod inspect;
 mod layout;
 mod lower;
 mod program;
