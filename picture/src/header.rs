@@ -2,6 +2,7 @@
 //! byte for byte and in order, so a command that copies a header copies it exactly.
 
 use crate::error::{ErrorKind, PictureError};
+use radc_lang::c_number::atof;
 
 /// `getheader` reads with `fgets` into a 2048-byte buffer: a longer line reaches its
 /// callback in pieces of at most this many bytes.
@@ -183,22 +184,6 @@ fn memchr(b: &[u8]) -> Option<usize> {
     b.iter().position(|&c| c == b'\n')
 }
 
-/// C's `atof`: the longest numeric prefix after leading blanks, 0 when there is none.
-pub fn atof(s: &str) -> f64 {
-    let s = s.trim_start();
-    let b = s.as_bytes();
-    let mut end = 0;
-    let mut best = 0.0;
-    // Try successively longer prefixes made of number characters; keep the last that parses.
-    while end < b.len() && matches!(b[end], b'0'..=b'9' | b'+' | b'-' | b'.' | b'e' | b'E') {
-        end += 1;
-        if let Ok(v) = s[..end].parse::<f64>() {
-            best = v;
-        }
-    }
-    best
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,12 +221,5 @@ mod tests {
         let (h, _) = Header::parse(&data).unwrap();
         assert_eq!(h.lines.len(), 3);
         assert_eq!(h.lines[1].0.len(), MAX_PIECE);
-    }
-
-    #[test]
-    fn atof_reads_a_prefix() {
-        assert_eq!(atof(" 2.5e1x"), 25.0);
-        assert_eq!(atof("abc"), 0.0);
-        assert_eq!(atof("-1.5 2"), -1.5);
     }
 }

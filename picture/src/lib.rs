@@ -4,8 +4,8 @@
 //! are flat, old-style run-length encoded or new-style (per byte plane) encoded.
 //!
 //! This crate is the one home of pictures in radc: the renderer writes through it, the
-//! picture commands (`radc getinfo`, `pvalue`, `pflip`, `protate`) are thin shells over
-//! it, and `colorpict` patterns sample through [`ColorPicture`]. It never prints and
+//! engines of the picture programs (`tools`: getinfo, pvalue, pflip, protate, ra_*)
+//! are here, with `radc`'s commands thin shells over them, and `colorpict` patterns sample through [`ColorPicture`]. It never prints and
 //! never panics on file data: every problem is a [`PictureError`] with the byte offset.
 
 pub mod color;
@@ -16,6 +16,7 @@ pub mod resolution;
 pub mod sample;
 pub mod scanline;
 pub mod tonemap;
+pub mod tools;
 
 mod picture;
 

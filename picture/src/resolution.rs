@@ -3,6 +3,8 @@
 //! the right and y up; the line says whether scanlines run along x or y (`YMAJOR`: the
 //! Y word comes first) and whether each coordinate decreases along the file.
 
+use radc_lang::c_number::atoi;
+
 /// Bit flags of `resolu.h`: `XDECR`, `YDECR`, `YMAJOR`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Orientation(pub u8);
@@ -75,8 +77,8 @@ impl Resolution {
         if yi > 0 && line[yi - 1] == b'-' {
             o |= Orientation::YDECR;
         }
-        let x = atoi(&line[xi + 1..]);
-        let y = atoi(&line[yi + 1..]);
+        let x = i64::from(atoi(&line[xi + 1..]));
+        let y = i64::from(atoi(&line[yi + 1..]));
         if x <= 0 || y <= 0 {
             return None;
         }
@@ -153,32 +155,6 @@ impl Resolution {
         let y = if o.y_decreasing() { self.y - 1 - y } else { y };
         if o.y_major() { (y, x) } else { (x, y) }
     }
-}
-
-/// C's `atoi` on bytes: blanks, a sign, digits; 0 when there are none. Saturates where
-/// C's would overflow.
-fn atoi(b: &[u8]) -> i64 {
-    let mut i = 0;
-    while i < b.len() && matches!(b[i], b' ' | b'\t' | b'\n' | b'\r' | 0x0b | 0x0c) {
-        i += 1;
-    }
-    let neg = match b.get(i) {
-        Some(b'-') => {
-            i += 1;
-            true
-        }
-        Some(b'+') => {
-            i += 1;
-            false
-        }
-        _ => false,
-    };
-    let mut v: i64 = 0;
-    while let Some(d) = b.get(i).filter(|d| d.is_ascii_digit()) {
-        v = (v * 10 + i64::from(d - b'0')).min(i64::from(i32::MAX));
-        i += 1;
-    }
-    if neg { -v } else { v }
 }
 
 #[cfg(test)]

@@ -24,7 +24,7 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     let counts: Vec<u64> = args
         .iter()
-        .map(|a| radc_lang::c_number::atol(a))
+        .map(radc_lang::c_number::atol)
         .filter(|n| *n > 1)
         .map(|n| n as u64)
         .collect();

@@ -113,8 +113,8 @@ pub fn atof(s: &str) -> f64 {
 
 /// glibc's `strtol` in base 10 (as `atoi`/`atol` use it): leading white space, an
 /// optional sign and digits, saturating at the ends of a 64-bit `long`; 0 for none.
-pub fn atol(s: &str) -> i64 {
-    let b = skip_c_spaces(s.as_bytes());
+pub fn atol(s: impl AsRef<[u8]>) -> i64 {
+    let b = skip_c_spaces(s.as_ref());
     let (negative, digits) = match b.first() {
         Some(b'-') => (true, &b[1..]),
         Some(b'+') => (false, &b[1..]),
@@ -128,6 +128,12 @@ pub fn atol(s: &str) -> i64 {
         });
     let long = if negative { -magnitude } else { magnitude };
     long.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+}
+
+/// C's `atoi`: [`atol`] converted to `int` as glibc does (`(int) strtol(...)`, which
+/// keeps the low 32 bits of a value past `int`'s range).
+pub fn atoi(s: impl AsRef<[u8]>) -> i32 {
+    atol(s) as i32
 }
 
 /// Radiance's `isint()`: leading white space, an optional sign, digits, nothing after.

@@ -48,6 +48,8 @@ fn atol_saturates_as_strtol() {
     assert_eq!(atol("x"), 0);
     assert_eq!(atol("99999999999999999999999"), i64::MAX);
     assert_eq!(atol("-99999999999999999999999"), i64::MIN);
+    assert_eq!(atoi("-12x"), -12);
+    assert_eq!(atoi(b"4294967297".as_slice()), 1);
 }
 
 /// The fast path must give strtod's correctly rounded value: std's parser is

@@ -4,16 +4,12 @@
 //! too), `-a line...` adds lines to the header of standard input, `-c command...` runs a
 //! command on the data after the header and writes the header with the command added.
 //! Works on any Radiance file (pictures, octrees, matrices), as getinfo does.
-
+use super::{FAILURE, fail, format_line, read_input, stdout_position, words_line, write_stdout};
+use radc_picture::tools::getinfo;
+use radc_picture::{Header, Resolution};
 use std::io::{BufRead, Read, Write};
 use std::process::{ExitCode, Stdio};
-
-use radc_picture::{Header, HeaderLine, Resolution};
-
-use super::{FAILURE, fail, format_line, read_input, stdout_position, words_line, write_stdout};
-
 const NAME: &str = "getinfo";
-
 pub fn run(args: &[String]) -> ExitCode {
     // A first argument of -d or +d (getinfo looks at its first two characters only).
     let (dim, args) = match args.first().map(String::as_bytes) {
@@ -32,82 +28,21 @@ pub fn run(args: &[String]) -> ExitCode {
         Some(_) => files(dim, args),
     }
 }
-
-/// What getinfo prints for the data after a header (`getdim`): a picture's resolution
-/// line, an octree's boundaries, or "unknown file type".
-fn dimensions(data: &[u8], out: &mut Vec<u8>) {
-    match data.first() {
-        Some(b'+' | b'-') => {
-            let end = data
-                .iter()
-                .position(|&b| b == b'\n')
-                .map_or(data.len(), |n| n + 1);
-            out.extend_from_slice(&data[..end]);
-        }
-        Some(1) => {
-            // An octree: a format byte, then the cube's origin and size as strings.
-            let mut zeros = 0;
-            for &c in data.iter().skip(2) {
-                if c == 0 {
-                    zeros += 1;
-                    if zeros >= 4 {
-                        break;
-                    }
-                    out.push(b' ');
-                } else {
-                    out.push(c);
-                }
-            }
-            out.push(b'\n');
-        }
-        _ => out.extend_from_slice(b"unknown file type\n"),
-    }
-}
-
 fn files(dim: i32, names: &[String]) -> ExitCode {
     let mut out = Vec::new();
     for name in names {
-        out.extend_from_slice(name.as_bytes());
         let Ok(data) = std::fs::read(name) else {
+            out.extend_from_slice(name.as_bytes());
             out.extend_from_slice(b": cannot open\n");
             continue;
         };
-        let (lines, end) = Header::parse_partial(&data);
-        if dim < 0 {
-            match end {
-                Ok(end) => {
-                    out.extend_from_slice(b": ");
-                    dimensions(&data[end..], &mut out);
-                }
-                Err(_) => out.extend_from_slice(b": bad header!\n"),
-            }
-            continue;
-        }
-        out.extend_from_slice(b":\n\t");
-        for line in &lines {
-            out.extend_from_slice(&line.0);
-            if line.0.ends_with(b"\n") {
-                out.push(b'\t');
-            }
-        }
-        let end = match end {
-            Ok(end) => end,
-            Err(e) => {
-                let _ = write_stdout(NAME, &out);
-                eprintln!("{name}: bad header! ({e})");
-                return ExitCode::from(FAILURE);
-            }
-        };
-        out.push(b'\n');
-        if dim > 0 {
-            out.push(b'\t');
-            dimensions(&data[end..], &mut out);
+        if let Err(e) = getinfo::file_listing(name, &data, dim, &mut out) {
+            let _ = write_stdout(NAME, &out);
+            eprintln!("{e}");
+            return ExitCode::from(FAILURE);
         }
     }
-    match write_stdout(NAME, &out) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(code) => code,
-    }
+    finish(write_stdout(NAME, &out))
 }
 
 /// No file names: the header of standard input, as is.
@@ -116,27 +51,12 @@ fn standard_input(dim: i32) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail(NAME, e),
     };
-    let (lines, end) = Header::parse_partial(&data);
     let mut out = Vec::new();
-    if dim >= 0 {
-        lines.iter().for_each(|l| out.extend_from_slice(&l.0));
-    }
-    let end = match end {
-        Ok(end) => end,
-        Err(e) => {
-            let _ = write_stdout(NAME, &out);
-            return fail(NAME, format!("bad header on standard input: {e}"));
-        }
-    };
-    if dim >= 0 {
-        out.push(b'\n');
-    }
-    if dim != 0 {
-        dimensions(&data[end..], &mut out);
-    }
-    match write_stdout(NAME, &out) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(code) => code,
+    let listed = getinfo::input_listing(&data, dim, &mut out);
+    let written = write_stdout(NAME, &out);
+    match listed {
+        Ok(()) => finish(written),
+        Err(e) => fail(NAME, e),
     }
 }
 
@@ -146,33 +66,10 @@ fn strip_header(dim: i32) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail(NAME, e),
     };
-    let mut at = match Header::parse(&data) {
-        Ok((_, end)) => end,
-        Err(e) => return fail(NAME, format!("bad header on standard input: {e}")),
-    };
-    if dim < 0 {
-        match Resolution::parse(&data[at..]) {
-            Some((_, n)) => at += n,
-            None => return fail(NAME, "no resolution string on standard input"),
-        }
+    match getinfo::strip_header(&data, dim) {
+        Ok(rest) => finish(write_stdout(NAME, rest)),
+        Err(e) => fail(NAME, e),
     }
-    match write_stdout(NAME, &data[at..]) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(code) => code,
-    }
-}
-
-/// The header lines `checkheader` copies (all but `FORMAT=`) and the format found.
-fn header_without_format(lines: &[HeaderLine]) -> (Vec<u8>, Option<String>) {
-    let mut out = Vec::new();
-    let mut format = None;
-    for l in lines {
-        match l.format() {
-            Some(f) => format = Some(f),
-            None => out.extend_from_slice(&l.0),
-        }
-    }
-    (out, format)
 }
 
 /// `getinfo -a line...`: the header of standard input with the lines added before its
@@ -182,26 +79,14 @@ fn add_lines(lines: &[String]) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail(NAME, e),
     };
-    let (header, end) = match Header::parse(&data) {
-        Ok(h) => h,
-        Err(e) => return fail(NAME, format!("bad header on standard input: {e}")),
-    };
-    let (mut out, format) = header_without_format(&header.lines);
-    for l in lines.iter().filter(|l| !l.is_empty()) {
-        out.extend_from_slice(l.as_bytes());
-        if !l.ends_with('\n') {
-            out.push(b'\n');
-        }
+    match getinfo::add_lines(&data, lines, stdout_position()) {
+        Ok(out) => finish(write_stdout(NAME, &out)),
+        Err(e) => fail(NAME, e),
     }
-    if let Some(f) = format {
-        out.extend_from_slice(format_line(&f, stdout_position(), out.len()).as_bytes());
-    }
-    out.push(b'\n');
-    out.extend_from_slice(&data[end..]);
-    match write_stdout(NAME, &out) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(code) => code,
-    }
+}
+
+fn finish(written: Result<(), ExitCode>) -> ExitCode {
+    written.err().unwrap_or(ExitCode::SUCCESS)
 }
 
 /// `getinfo -c command...`: the header of standard input with the command line added,
@@ -232,7 +117,7 @@ fn run_command(dim: i32, command: &[String]) -> ExitCode {
         Ok((h, _)) => h,
         Err(e) => return fail(NAME, format!("bad header on standard input: {e}")),
     };
-    let (mut out, format) = header_without_format(&header.lines);
+    let (mut out, format) = getinfo::header_without_format(&header.lines);
     out.extend_from_slice(words_line(command).as_bytes());
     if let Some(f) = format {
         out.extend_from_slice(format_line(&f, stdout_position(), out.len()).as_bytes());
