@@ -85,7 +85,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
         "specfunc" => pattern_on_material("void specfunc x 2 f f.cal 0 2 400 700"),
         "specdata" => pattern_on_material("void specdata x 4 f d.dat f.cal Px 0 0"),
         "specpict" => pattern_on_material("void specpict x 5 f p.hdr f.cal Px Py 0 0"),
-        "texdata" => pattern_on_material("void texdata x 8 f f f d.dat d.dat d.dat f.cal Px 0 0"),
         "mixfunc" => "void plastic a 0 0 5 1 1 1 0 0\nvoid plastic b 0 0 5 0 0 0 0 0\n\
                       void mixfunc x 4 a b v f.cal 0 0\n\
                       x plastic m 0 0 5 .5 .5 .5 0 0\n"

@@ -2,7 +2,7 @@
 //! ray evaluation that reproduces Radiance's rtrace. It sees typed scenes, never text.
 //!
 //! Not modelled yet, and refused by name by the scene compiler (never dropped): the
-//! text and spectral patterns, textures other than texfunc, mixtures, dispersion
+//! text and spectral patterns, mixtures, dispersion
 //! (`dielectric` with a Hartmann constant), BSDF and the other function and data
 //! materials, scattering media (mist with an albedo, `-ma`), instances and meshes. Not
 //! reproduced: Radiance's irradiance cache (`-aa > 0`; radc computes every ambient value

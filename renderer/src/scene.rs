@@ -643,7 +643,7 @@ impl Compiler<'_> {
                 break;
             }
             let Some(p) = self.ir.get(m) else { break };
-            let texture = p.schema.name == "texfunc";
+            let texture = matches!(p.schema.name, "texfunc" | "texdata");
             let takes = self.takes_modifier(kind, texture);
             if !is_rendered_pattern(p.schema.name) {
                 self.unsupported(m, not_modelled(p.category()));
@@ -686,8 +686,8 @@ impl Compiler<'_> {
         })
     }
 
-    /// Compiles pattern primitive `id` (brightfunc, colorfunc, texfunc, brightdata,
-    /// colordata, colorpict) into the scene's functions, once.
+    /// Compiles pattern primitive `id` (brightfunc, colorfunc, texfunc, texdata,
+    /// brightdata, colordata, colorpict) into the scene's functions, once.
     fn pattern(&mut self, id: PrimId) -> Option<u32> {
         if let Some(&i) = self.pattern_of_prim.get(&id) {
             return Some(i);
@@ -788,6 +788,11 @@ impl Compiler<'_> {
                 functions: calls(&strings[..1], false)?,
             }),
             PatternSource::ColorData(data) => PatternKind::ColorData(DataLookup {
+                source: DataSource::Color(data),
+                functions: calls(&strings[..3], true)?,
+            }),
+            // t_data.c looks values up and applies its functions as p_cdata does.
+            PatternSource::TextureData(data) => PatternKind::TextureData(DataLookup {
                 source: DataSource::Color(data),
                 functions: calls(&strings[..3], true)?,
             }),
@@ -1122,7 +1127,13 @@ fn refused_on(texture: bool) -> &'static str {
 fn is_rendered_pattern(name: &str) -> bool {
     matches!(
         name,
-        "brightfunc" | "colorfunc" | "texfunc" | "brightdata" | "colordata" | "colorpict"
+        "brightfunc"
+            | "colorfunc"
+            | "texfunc"
+            | "texdata"
+            | "brightdata"
+            | "colordata"
+            | "colorpict"
     )
 }
 
@@ -1140,6 +1151,8 @@ enum PatternSource {
     Texture,
     BrightData(std::sync::Arc<radc_lang::datafile::DataFile>),
     ColorData([std::sync::Arc<radc_lang::datafile::DataFile>; 3]),
+    /// `texdata`: the x, y and z displacement files.
+    TextureData([std::sync::Arc<radc_lang::datafile::DataFile>; 3]),
     ColorPict(std::sync::Arc<radc_picture::ColorPicture>),
 }
 
@@ -1167,7 +1180,7 @@ impl PatternLayout {
                 let dims = d.as_ref().map_or(0, |d| d.dimensions());
                 (2, 3, d.map(PatternSource::BrightData), dims)
             }
-            "colordata" => {
+            "colordata" | "texdata" => {
                 let d = (
                     file(strings.get(3)?),
                     file(strings.get(4)?),
@@ -1185,7 +1198,12 @@ impl PatternLayout {
                     (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => Err(e),
                 };
                 let dims = d.as_ref().map_or(0, |d| d[0].dimensions());
-                (6, 7, d.map(PatternSource::ColorData), dims)
+                let source = if kind == "texdata" {
+                    d.map(PatternSource::TextureData)
+                } else {
+                    d.map(PatternSource::ColorData)
+                };
+                (6, 7, source, dims)
             }
             "colorpict" => {
                 let name = strings.get(3)?;

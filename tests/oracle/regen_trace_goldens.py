@@ -292,6 +292,12 @@ def cases():
     case("data_patterns-view", "data_patterns.rad", ["-av", ".05", ".05", ".05"], data_view, "-ovL")
     case("data_patterns-irradiance", "data_patterns.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    texd_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .3], spread=2.5)
+    texd_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[0, 3, 2], spread=1.5)
+    texd_view += box_rays(rng, 30, [-2.5, -2, .5], [-.5, -1, 1.5], toward=[-1.5, 0, 1], spread=.6)
+    case("texture_data-view", "texture_data.rad", ["-av", ".05", ".05", ".05"], texd_view, "-ovL")
+    case("texture_data-irradiance", "texture_data.rad", ["-I"],
+         irradiance_points(rng, 30, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     return out
 
 

@@ -22,6 +22,9 @@ pub enum PatternKind {
     BrightData(DataLookup),
     /// `colordata`: likewise, three files.
     ColorData(DataLookup),
+    /// `texdata` (t_data.c): the data files' values, through its functions, displace
+    /// the normal as a texfunc's expressions do.
+    TextureData(DataLookup),
     /// `colorpict`: the expressions are the picture coordinates.
     ColorPict(PictureLookup),
 }
@@ -71,7 +74,7 @@ impl Pattern {
                     .eval(index, program, coords, &mut input, &mut v[..n])
                     .map(|()| v)
             }
-            PatternKind::BrightData(d) | PatternKind::ColorData(d) => {
+            PatternKind::BrightData(d) | PatternKind::ColorData(d) | PatternKind::TextureData(d) => {
                 d.values(functions, index, program, coords, &channels, args)
             }
             PatternKind::ColorPict(p) => {
@@ -93,14 +96,15 @@ impl Pattern {
                     f(pcol.z, f64::from(v[2] as f32)),
                 )
             }
-            PatternKind::Texture => {
-                // The displacement turns (and scales) with the texture (`multv3` by
-                // `fxp`).
-                let d = match &self.forward {
-                    Some(xf) => xf.vector(v),
-                    None => v,
+            PatternKind::Texture | PatternKind::TextureData(_) => {
+                // The displacement turns with the texture (`multv3` by `fxp`) and is
+                // divided by its scale (`VSUM(pert, pert, disp, 1/sca)`), so only the
+                // rotation and mirroring remain.
+                let (d, by) = match &self.forward {
+                    Some(xf) => (xf.vector(v), 1.0 / xf.scale),
+                    None => (v, 1.0),
                 };
-                *pert += Vec3::new(d[0], d[1], d[2]);
+                *pert += Vec3::new(d[0] * by, d[1] * by, d[2] * by);
                 return;
             }
         };
