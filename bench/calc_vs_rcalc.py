@@ -10,7 +10,9 @@ checks that every output is byte-identical to rcalc's:
     radc calc                        the JIT on every core (records in chunks)
     rcalc                            Radiance (pyradiance), one thread by design
 
-Usage: python3 bench/calc_vs_rcalc.py [--rows N] [--runs K] [--no-build]
+Usage: python3 bench/calc_vs_rcalc.py [--rows N] [--runs K] [--no-build] [--radc BIN]
+[--before OLD_BIN] (--before runs an older build's three configurations in the same
+rounds, for before/after figures)
 (needs the oracle for rcalc: bash tests/oracle/install.sh). Figures go to
 BENCHMARKS.md, section "radc calc vs rcalc".
 """
@@ -39,10 +41,12 @@ def main():
     ap.add_argument("--rows", type=int, default=1_000_000)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--no-build", action="store_true")
+    ap.add_argument("--radc", default=os.path.join(ROOT, "target", "release", "radc"))
+    ap.add_argument("--before", help="another radc binary (an older build) to run alongside")
     args = ap.parse_args()
     if not args.no_build:
         subprocess.check_call(["cargo", "build", "--release", "--quiet", "--bin", "radc"], cwd=ROOT)
-    radc = os.path.join(ROOT, "target", "release", "radc")
+    radc = args.radc
     env = radiance_env("rcalc")
     rcalc = shutil.which("rcalc", path=env["PATH"])
     work = tempfile.mkdtemp()
@@ -56,6 +60,13 @@ def main():
             ("radc calc --threads 1 (JIT)", [radc, "calc", "--threads", "1", "-e", EXPR]),
             (f"radc calc (JIT, {os.cpu_count()} cores)", [radc, "calc", "-e", EXPR]),
         ]
+        if args.before:
+            b = args.before
+            configs += [
+                ("before: radc calc --interp --threads 1", [b, "calc", "--interp", "--threads", "1", "-e", EXPR]),
+                ("before: radc calc --threads 1 (JIT)", [b, "calc", "--threads", "1", "-e", EXPR]),
+                (f"before: radc calc (JIT, {os.cpu_count()} cores)", [b, "calc", "-e", EXPR]),
+            ]
         if rcalc:
             configs.append(("rcalc (Radiance)", [rcalc, "-e", EXPR]))
         best = {}
@@ -74,11 +85,11 @@ def main():
         print(f"rows: {args.rows}   runs: {args.runs} (best of)   load average: {load:.1f}")
         print(f"expression: {EXPR}")
         ref = best.get("rcalc (Radiance)")
-        print(f"{'program':36} {'wall s':>8} {'cpu s':>8}  {'vs rcalc (wall, cpu)':>22}")
+        print(f"{'program':44} {'wall s':>8} {'cpu s':>8}  {'vs rcalc (wall, cpu)':>22}")
         for label, _ in configs:
             wall, cpu = best[label]
             ratio = f"{ref[0] / wall:8.2f}x {ref[1] / cpu:8.2f}x" if ref else ""
-            print(f"{label:36} {wall:8.3f} {cpu:8.3f}  {ratio:>22}")
+            print(f"{label:44} {wall:8.3f} {cpu:8.3f}  {ratio:>22}")
         want = outs.get("rcalc (Radiance)", next(iter(outs.values())))
         for label, data in outs.items():
             print(f"output of {label}: {'identical to rcalc' if data == want else 'DIFFERS'}")
