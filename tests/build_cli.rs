@@ -72,9 +72,16 @@ fn compiled_scenes_trace_exactly_like_their_text() {
         let rsc = dir.path().join(format!("{id}.rsc"));
         // Patterns and textures are compiled at render time: such scenes are stored as
         // read (a scene bundle), the others compiled.
-        let with_functions = ["patterns-", "textures-", "daylight-", "data_patterns-"]
-            .iter()
-            .any(|p| id.starts_with(p));
+        let with_functions = [
+            "patterns-",
+            "textures-",
+            "daylight-",
+            "data_patterns-",
+            "texture_data-",
+            "mixtures-",
+        ]
+        .iter()
+        .any(|p| id.starts_with(p));
         build(&scenes, &rsc);
         let head = std::fs::read(&rsc).expect("scene file");
         assert_eq!(head.starts_with(b"RADCSRC\x1a"), with_functions, "{id}");

@@ -2,7 +2,8 @@
 //! ray evaluation that reproduces Radiance's rtrace. It sees typed scenes, never text.
 //!
 //! Not modelled yet, and refused by name by the scene compiler (never dropped): the
-//! text and spectral patterns, mixtures, dispersion
+//! text and spectral patterns, `mixtext`, mixtures of materials that modify a
+//! material or follow a pattern (Radiance stops at the first), dispersion
 //! (`dielectric` with a Hartmann constant), BSDF and the other function and data
 //! materials, scattering media (mist with an albedo, `-ma`), instances and meshes. Not
 //! reproduced: Radiance's irradiance cache (`-aa > 0`; radc computes every ambient value

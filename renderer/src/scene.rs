@@ -24,10 +24,12 @@ use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
 use crate::materials::mist::Mist;
+use crate::materials::mixture::Mixture;
 use crate::materials::{Alternate, Material, MaterialId, metal, plastic, trans};
 use crate::math::{FTINY, Vec3, vec3};
 use crate::procedural::{
-    DataLookup, DataSource, Engine, Functions, Pattern, PatternKind, PictureLookup, ProgramId,
+    DataLookup, DataSource, Engine, Functions, MixSource, Pattern, PatternKind, PictureLookup,
+    ProgramId,
 };
 use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
 use crate::surfaces::Surfaces;
@@ -184,6 +186,8 @@ struct Compiler<'a> {
     material_patterns: Vec<Vec<u32>>,
     /// The material each surface-level pattern chain ends in, compiled with the chain.
     surface_chains: std::collections::HashMap<PrimId, (Option<MaterialId>, String)>,
+    /// Mixtures of patterns compiled: pattern index, and whether a side has a texture.
+    mixtures: std::collections::HashMap<PrimId, (u32, bool)>,
 }
 
 /// Why radc refuses a modifier of this category where it sits: the renderer does not
@@ -213,6 +217,7 @@ impl<'a> Compiler<'a> {
             pattern_of_prim: std::collections::HashMap::new(),
             material_patterns: Vec::new(),
             surface_chains: std::collections::HashMap::new(),
+            mixtures: std::collections::HashMap::new(),
         }
     }
 
@@ -521,6 +526,11 @@ impl Compiler<'_> {
                 (self.compile_material(id), name)
             }
             Category::Pattern | Category::Texture => self.patterned_material(id),
+            Category::Mixture if is_rendered_mixture(p.schema.name) && self.mixes_materials(id) => {
+                let name = p.name.clone();
+                (self.mixture_material(id), name)
+            }
+            Category::Mixture if is_rendered_mixture(p.schema.name) => self.patterned_material(id),
             category @ Category::Mixture => {
                 self.unsupported(id, not_modelled(category));
                 (None, String::new())
@@ -558,7 +568,27 @@ impl Compiler<'_> {
                         self.path.truncate(depth);
                         return (None, String::new());
                     };
-                    prefix.push((i, p.schema.name == "texfunc", m));
+                    prefix.push((i, is_texture(p.schema.name), m));
+                    self.path.push(m);
+                    next = match p.modifier {
+                        ModRef::Prim(n) => Some(n),
+                        _ => None,
+                    };
+                }
+                Category::Mixture if is_rendered_mixture(p.schema.name) => {
+                    if self.mixes_materials(m) {
+                        self.unsupported(
+                            m,
+                            "patterns before a mixture of materials are not rendered yet",
+                        );
+                        self.path.truncate(depth);
+                        return (None, String::new());
+                    }
+                    let Some((i, texture)) = self.mixture_pattern(m) else {
+                        self.path.truncate(depth);
+                        return (None, String::new());
+                    };
+                    prefix.push((i, texture, m));
                     self.path.push(m);
                     next = match p.modifier {
                         ModRef::Prim(n) => Some(n),
@@ -643,20 +673,32 @@ impl Compiler<'_> {
                 break;
             }
             let Some(p) = self.ir.get(m) else { break };
-            let texture = matches!(p.schema.name, "texfunc" | "texdata");
-            let takes = self.takes_modifier(kind, texture);
-            if !is_rendered_pattern(p.schema.name) {
+            let compiled = if is_rendered_mixture(p.schema.name) {
+                if self.mixes_materials(m) {
+                    self.unsupported(m, "a mixture of materials cannot modify a material");
+                    result = None;
+                    break;
+                }
+                self.mixture_pattern(m)
+            } else if is_rendered_pattern(p.schema.name) {
+                let texture = is_texture(p.schema.name);
+                if self.takes_modifier(kind, texture) {
+                    self.pattern(m).map(|i| (i, texture))
+                } else {
+                    self.unsupported(m, refused_on(texture));
+                    None
+                }
+            } else {
                 self.unsupported(m, not_modelled(p.category()));
-                result = None;
-                break;
-            }
-            if !takes {
-                self.unsupported(m, refused_on(texture));
-                result = None;
-                break;
-            }
-            match self.pattern(m) {
-                Some(i) => patterns.push(i),
+                None
+            };
+            match compiled {
+                Some((_, texture)) if !self.takes_modifier(kind, texture) => {
+                    self.unsupported(m, refused_on(texture));
+                    result = None;
+                    break;
+                }
+                Some((i, _)) => patterns.push(i),
                 None => {
                     result = None;
                     break;
@@ -800,7 +842,193 @@ impl Compiler<'_> {
                 picture,
                 functions: calls(&strings[..3], true)?,
             }),
+            // The sides are filled in by `mixture_pattern` or `mixture_material`.
+            PatternSource::MixFunction => PatternKind::Mixture {
+                source: MixSource::Function,
+                fore: Vec::new(),
+                back: Vec::new(),
+            },
+            // mx_data.c: `funvalue(func, 1, &value)`; mx_pdata: `funvalue(func, 3, col)`.
+            PatternSource::MixData(data) => PatternKind::Mixture {
+                source: MixSource::Data(DataLookup {
+                    source: DataSource::Mix(data),
+                    functions: calls(&strings[2..3], false)?,
+                }),
+                fore: Vec::new(),
+                back: Vec::new(),
+            },
+            PatternSource::MixPicture(picture) => PatternKind::Mixture {
+                source: MixSource::Picture(PictureLookup {
+                    picture,
+                    functions: calls(&strings[2..3], true)?,
+                }),
+                fore: Vec::new(),
+                back: Vec::new(),
+            },
         })
+    }
+
+    /// A mixture's two sides as named in its first two strings (`None` for `void`);
+    /// `Err` after refusing a name that resolves to nothing.
+    fn mixture_sides(&mut self, id: PrimId) -> Result<[Option<PrimId>; 2], ()> {
+        let Some(PrimKind::Other { strings, .. }) = self.ir.get(id).map(|p| &p.kind) else {
+            self.unsupported(id, "its arguments could not be read");
+            return Err(());
+        };
+        if strings.len() < 4 {
+            self.unsupported(id, "bad # arguments");
+            return Err(());
+        }
+        let mut sides = [None, None];
+        for (k, side) in sides.iter_mut().enumerate() {
+            let name = &strings[k];
+            if name == "void" {
+                continue;
+            }
+            match self.named_ref(id, name) {
+                Some(m) => *side = Some(m),
+                None => {
+                    self.refuse_with(id, format!("undefined modifier \"{name}\""));
+                    return Err(());
+                }
+            }
+        }
+        Ok(sides)
+    }
+
+    /// Whether `rayshade` from modifier `first` ends in a material: whether a mixture
+    /// with that side mixes materials (raymixture's `foremat`).
+    fn shades_a_material(&self, first: PrimId) -> bool {
+        let mut next = Some(first);
+        for _ in 0..self.ir.prims.len() + 1 {
+            let Some(p) = next.and_then(|m| self.ir.get(m)) else {
+                return false;
+            };
+            match p.category() {
+                Category::Material | Category::Light | Category::Alias => return true,
+                Category::Mixture if next.is_some_and(|m| self.mixes_materials(m)) => {
+                    return true;
+                }
+                _ => {}
+            }
+            next = match p.modifier {
+                ModRef::Prim(n) => Some(n),
+                _ => None,
+            };
+        }
+        false
+    }
+
+    /// Whether mixture `id` blends materials (either side shades one) rather than
+    /// patterns and textures.
+    fn mixes_materials(&self, id: PrimId) -> bool {
+        let Some(PrimKind::Other { strings, .. }) = self.ir.get(id).map(|p| &p.kind) else {
+            return false;
+        };
+        strings.iter().take(2).any(|name| {
+            name != "void"
+                && self
+                    .named_ref(id, name)
+                    .is_some_and(|m| m != id && self.shades_a_material(m))
+        })
+    }
+
+    /// The pattern chain `rayshade` applies from `first` down its modifiers (a side of
+    /// a mixture of patterns), and whether it holds a texture; `None` after refusing.
+    fn pattern_chain(&mut self, first: Option<PrimId>) -> Option<(Vec<u32>, bool)> {
+        let mut chain = Vec::new();
+        let mut texture = false;
+        let mut next = first;
+        let depth = self.path.len();
+        while let Some(m) = next {
+            let Some(p) = self.ir.get(m) else { break };
+            if chain.len() > self.ir.prims.len() {
+                break;
+            }
+            let compiled = if is_rendered_mixture(p.schema.name) {
+                self.mixture_pattern(m)
+            } else if is_rendered_pattern(p.schema.name) {
+                self.pattern(m).map(|i| (i, is_texture(p.schema.name)))
+            } else {
+                self.unsupported(m, not_modelled(p.category()));
+                None
+            };
+            let Some((i, t)) = compiled else {
+                self.path.truncate(depth);
+                return None;
+            };
+            chain.push(i);
+            texture |= t;
+            self.path.push(m);
+            next = match p.modifier {
+                ModRef::Prim(n) => Some(n),
+                _ => None,
+            };
+        }
+        self.path.truncate(depth);
+        Some((chain, texture))
+    }
+
+    /// A mixture of patterns and textures, compiled once: its coefficient and the two
+    /// sides' chains. Returns its pattern index and whether either side holds a texture.
+    fn mixture_pattern(&mut self, id: PrimId) -> Option<(u32, bool)> {
+        if let Some(&done) = self.mixtures.get(&id) {
+            return Some(done);
+        }
+        let sides = self.mixture_sides(id).ok()?;
+        let index = self.pattern(id)?;
+        let depth = self.path.len();
+        self.path.push(id);
+        let fore = self.pattern_chain(sides[0]);
+        let back = self.pattern_chain(sides[1]);
+        self.path.truncate(depth);
+        let ((fore, tf), (back, tb)) = (fore?, back?);
+        if let Some(Pattern {
+            kind: PatternKind::Mixture {
+                fore: f, back: b, ..
+            },
+            ..
+        }) = self.functions.patterns.get_mut(index as usize)
+        {
+            *f = fore;
+            *b = back;
+        }
+        let done = (index, tf || tb);
+        self.mixtures.insert(id, done);
+        Some(done)
+    }
+
+    /// A mixture of materials (the surface's modifier): each side compiled as a
+    /// surface's modifier would be.
+    fn mixture_material(&mut self, id: PrimId) -> Option<MaterialId> {
+        if let Some(Some(done)) = self.material_of_prim.get(id.0 as usize) {
+            return *done;
+        }
+        if self.ir.get(id).is_some_and(|p| p.modifier != ModRef::Void) {
+            self.unsupported(
+                id,
+                "inappropriate modifier: a mixture of materials takes void",
+            );
+            return None;
+        }
+        let sides = self.mixture_sides(id).ok()?;
+        let pattern = self.pattern(id)?;
+        let depth = self.path.len();
+        self.path.push(id);
+        let [fore, back] = sides.map(|side| side.and_then(|m| self.material_of(ModRef::Prim(m)).0));
+        self.path.truncate(depth);
+        let mid = MaterialId(self.scene.materials.len() as u32);
+        self.scene.materials.push(Material::Mixture(Mixture {
+            pattern,
+            fore,
+            back,
+        }));
+        self.material_patterns
+            .resize(self.scene.materials.len(), Vec::new());
+        if let Some(slot) = self.material_of_prim.get_mut(id.0 as usize) {
+            *slot = Some(Some(mid));
+        }
+        Some(mid)
     }
 
     /// The modifier a material is shaded with: an alias's own (`mod alias new old`
@@ -1124,6 +1352,15 @@ fn refused_on(texture: bool) -> &'static str {
     }
 }
 
+/// Whether a pattern type displaces the normal (a texture).
+fn is_texture(name: &str) -> bool {
+    matches!(name, "texfunc" | "texdata")
+}
+
+fn is_rendered_mixture(name: &str) -> bool {
+    matches!(name, "mixfunc" | "mixdata" | "mixpict")
+}
+
 fn is_rendered_pattern(name: &str) -> bool {
     matches!(
         name,
@@ -1154,6 +1391,9 @@ enum PatternSource {
     /// `texdata`: the x, y and z displacement files.
     TextureData([std::sync::Arc<radc_lang::datafile::DataFile>; 3]),
     ColorPict(std::sync::Arc<radc_picture::ColorPicture>),
+    MixFunction,
+    MixData(std::sync::Arc<radc_lang::datafile::DataFile>),
+    MixPicture(std::sync::Arc<radc_picture::ColorPicture>),
 }
 
 impl PatternLayout {
@@ -1205,7 +1445,7 @@ impl PatternLayout {
                 };
                 (6, 7, source, dims)
             }
-            "colorpict" => {
+            "colorpict" | "mixpict" => {
                 let name = strings.get(3)?;
                 let picture = data
                     .pictures
@@ -1215,13 +1455,21 @@ impl PatternLayout {
                         radc_picture::Picture::read(bytes)
                             .and_then(|p| radc_picture::ColorPicture::new(&p))
                             .map_err(|e| format!("bad picture file '{name}': {e}"))
-                    });
-                (
-                    4,
-                    5,
-                    picture.map(|p| PatternSource::ColorPict(std::sync::Arc::new(p))),
-                    2,
-                )
+                    })
+                    .map(std::sync::Arc::new);
+                let source = if kind == "mixpict" {
+                    picture.map(PatternSource::MixPicture)
+                } else {
+                    picture.map(PatternSource::ColorPict)
+                };
+                (4, 5, source, 2)
+            }
+            // mixfunc: foreground, background, the coefficient's expression, the file.
+            "mixfunc" => (3, 2, Ok(PatternSource::MixFunction), 1),
+            "mixdata" => {
+                let d = file(strings.get(3)?);
+                let dims = d.as_ref().map_or(0, |d| d.dimensions());
+                (4, 5, d.map(PatternSource::MixData), dims)
             }
             _ => return Some(Err(format!("{kind} patterns are not rendered yet"))),
         };

@@ -8,10 +8,32 @@ use radc_picture::Resolution;
 
 use crate::camera::Camera;
 use crate::math::{FTINY, Vec3};
+use crate::trace::RayEncoding;
+use radc_lang::c_number::format_e;
 
 /// A ray as vwrays writes it; all zero where the view has no ray (outside a
 /// fisheye's circle), which rtrace answers with zero.
 pub type OutputRay = [f64; 6];
+
+/// One ray as vwrays writes it: `%.5e` words on a line (`-fa`), or six floats or
+/// doubles (`-ff`, `-fd`). RGBE is not a ray encoding: an `InvalidInput` error.
+pub fn write_ray(
+    out: &mut impl std::io::Write,
+    encoding: RayEncoding,
+    ray: &OutputRay,
+) -> std::io::Result<()> {
+    match encoding {
+        RayEncoding::Ascii => {
+            let words: Vec<String> = ray.iter().map(|v| format_e(*v, 5)).collect();
+            writeln!(out, "{}", words.join(" "))
+        }
+        RayEncoding::Float => ray
+            .iter()
+            .try_for_each(|v| out.write_all(&(*v as f32).to_ne_bytes())),
+        RayEncoding::Double => ray.iter().try_for_each(|v| out.write_all(&v.to_ne_bytes())),
+        RayEncoding::Color => Err(std::io::Error::from(std::io::ErrorKind::InvalidInput)),
+    }
+}
 
 /// How the rays of a view are made.
 pub struct ViewRays<'a> {

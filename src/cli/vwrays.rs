@@ -6,21 +6,14 @@
 use std::io::{BufRead, Write};
 use std::process::ExitCode;
 
-use radc_lang::c_number::format_e;
 use radc_picture::{Header, Resolution};
 use radc_renderer::camera::View;
 use radc_renderer::math::FTINY;
-use radc_renderer::view_rays::{OutputRay, ViewRays};
+use radc_renderer::trace::RayEncoding;
+use radc_renderer::view_rays::{ViewRays, write_ray};
 
 const USAGE: &str =
     "Usage: vwrays [ -i -u -f{a|f|d} -c rept | -d ] { view opts .. | picture [zbuf] }";
-
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Format {
-    Ascii,
-    Float,
-    Double,
-}
 
 struct Args {
     view: View,
@@ -29,7 +22,7 @@ struct Args {
     pixel_aspect: f64,
     jitter: f64,
     repeat: u32,
-    format: Format,
+    format: RayEncoding,
     dimensions_only: bool,
     from_stdin: bool,
     unbuffered: bool,
@@ -48,7 +41,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
         pixel_aspect: 1.0,
         jitter: 0.0,
         repeat: 1,
-        format: Format::Ascii,
+        format: RayEncoding::Ascii,
         dimensions_only: false,
         from_stdin: false,
         unbuffered: false,
@@ -63,9 +56,9 @@ fn parse(args: &[String]) -> Result<Args, String> {
         let w = words[i];
         let next = words.get(i + 1).copied();
         match w {
-            "-fa" => a.format = Format::Ascii,
-            "-ff" => a.format = Format::Float,
-            "-fd" => a.format = Format::Double,
+            "-fa" => a.format = RayEncoding::Ascii,
+            "-ff" => a.format = RayEncoding::Float,
+            "-fd" => a.format = RayEncoding::Double,
             "-vf" => {
                 let path = next.ok_or_else(String::new)?;
                 if !super::options::view_file(&mut a.view, path)? {
@@ -148,27 +141,6 @@ fn picture_view(view: &mut View, path: &str) -> Result<Resolution, String> {
     let (res, _) =
         Resolution::parse(&bytes[end..]).ok_or_else(|| format!("{path}: no view in picture"))?;
     Ok(res)
-}
-
-fn write_ray(out: &mut impl Write, format: Format, ray: &OutputRay) -> std::io::Result<()> {
-    match format {
-        Format::Ascii => {
-            let words: Vec<String> = ray.iter().map(|v| format_e(*v, 5)).collect();
-            writeln!(out, "{}", words.join(" "))
-        }
-        Format::Float => {
-            for v in ray {
-                out.write_all(&(*v as f32).to_ne_bytes())?;
-            }
-            Ok(())
-        }
-        Format::Double => {
-            for v in ray {
-                out.write_all(&v.to_ne_bytes())?;
-            }
-            Ok(())
-        }
-    }
 }
 
 pub fn run(args: &[String]) -> ExitCode {

@@ -298,6 +298,16 @@ def cases():
     case("texture_data-view", "texture_data.rad", ["-av", ".05", ".05", ".05"], texd_view, "-ovL")
     case("texture_data-irradiance", "texture_data.rad", ["-I"],
          irradiance_points(rng, 30, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    mix_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .3], spread=2.5)
+    mix_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[0, 3, 2], spread=1.5)
+    mix_view += box_rays(rng, 30, [-2.5, -2, .5], [-.5, -1, 1.5], toward=[-1.5, 0, 1], spread=.6)
+    mix_view += box_rays(rng, 30, [0, -4, .5], [1, -3, 1.5], toward=[0, -1.5, 1], spread=.8)
+    mix_view += box_rays(rng, 30, [0, -1, .5], [2.5, 0, 1.5], toward=[1.5, .5, .8], spread=.5)
+    mix_view += box_rays(rng, 30, [0, -2, 1], [2, 0, 2], toward=[-4, 0, 1.5], spread=2)
+    mix_view += box_rays(rng, 30, [0, -1, 1], [1, 1, 2], toward=[.5, 2.9, 1.5], spread=1)
+    case("mixtures-view", "mixtures.rad", ["-av", ".05", ".05", ".05"], mix_view, "-ovL")
+    case("mixtures-irradiance", "mixtures.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     return out
 
 

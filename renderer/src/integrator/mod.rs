@@ -240,15 +240,7 @@ impl<'a> Tracer<'a> {
         let Some(functions) = self.scene.functions.as_deref() else {
             return self.shade_with(r, Some(material));
         };
-        let view = crate::procedural::RayView {
-            dir: r.dir,
-            normal: r.normal,
-            point: r.point,
-            total_distance: r.path_length + r.length,
-            length: r.length,
-            rod: r.rod,
-            uv: [0.0, 0.0],
-        };
+        let view = ray_view(r);
         let mut pcol = Color::ONE;
         let mut pert = Vec3::ZERO;
         for &i in patterns {
@@ -292,6 +284,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Anisotropic(a)) => a.shade(self, r),
             Some(Material::Mist(m)) => m.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
+            Some(Material::Mixture(m)) => m.shade(self, r),
             None => self.transmit(r),
         }
     }
@@ -421,6 +414,19 @@ impl<'a> Tracer<'a> {
     }
 }
 
+/// What the scene's functions see of a ray at its hit.
+fn ray_view(r: &RayState) -> crate::procedural::RayView {
+    crate::procedural::RayView {
+        dir: r.dir,
+        normal: r.normal,
+        point: r.point,
+        total_distance: r.path_length + r.length,
+        length: r.length,
+        rod: r.rod,
+        uv: [0.0, 0.0],
+    }
+}
+
 /// The tracer is the context materials shade in when rendering.
 impl ShadingContext for Tracer<'_> {
     fn options(&self) -> &Options {
@@ -457,6 +463,12 @@ impl ShadingContext for Tracer<'_> {
 
     fn transmit(&self, r: &mut RayState) {
         Tracer::transmit(self, r)
+    }
+
+    fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64> {
+        let functions = self.scene.functions.as_deref()?;
+        let p = functions.patterns.get(pattern as usize)?;
+        p.coefficient(functions, pattern, &ray_view(r))
     }
 
     fn ambient(&self, r: &RayState, coef: Color, normal: Vec3) -> Color {

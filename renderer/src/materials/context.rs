@@ -42,6 +42,10 @@ pub trait ShadingContext {
     /// Continues `r` unchanged past its hit (`raytrans`).
     fn transmit(&self, r: &mut RayState);
 
+    /// The coefficient of the mixture whose pattern is `pattern` for `r`'s hit, before
+    /// bounding; `None` on a compute error (warned of once).
+    fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64>;
+
     /// Indirect light reaching the hit from the hemisphere about `normal`, times
     /// `coef` (`multambient`).
     fn ambient(&self, r: &RayState, coef: Color, normal: Vec3) -> Color;
@@ -73,6 +77,11 @@ pub mod scripted {
         pub traced: RefCell<Vec<(RayKind, Vec3, Color)>>,
         pub transmitted: RefCell<u32>,
         pub ambient_normals: RefCell<Vec<Vec3>>,
+        /// What `mixture_coefficient` answers.
+        pub coefficient: Option<f64>,
+        /// Materials `shade` was asked for, with the ray's weight and coefficient; each
+        /// shades its ray `material + 1` grey and sets both lengths to that.
+        pub shaded: RefCell<Vec<(MaterialId, f64, Color)>>,
     }
 
     impl Default for Scripted {
@@ -86,6 +95,8 @@ pub mod scripted {
                 traced: RefCell::new(Vec::new()),
                 transmitted: RefCell::new(0),
                 ambient_normals: RefCell::new(Vec::new()),
+                coefficient: None,
+                shaded: RefCell::new(Vec::new()),
             }
         }
     }
@@ -129,7 +140,18 @@ pub mod scripted {
             r.color = self.seen;
             r.length = 1.0;
         }
-        fn shade(&self, _: &mut RayState, _: Option<MaterialId>) {}
+        fn shade(&self, r: &mut RayState, material: Option<MaterialId>) {
+            if let Some(m) = material {
+                self.shaded.borrow_mut().push((m, r.weight, r.coef));
+                let v = f64::from(m.0 + 1);
+                r.color = Color::splat(v);
+                r.mirror_length = v;
+                r.other_length = v;
+            }
+        }
+        fn mixture_coefficient(&self, _: u32, _: &RayState) -> Option<f64> {
+            self.coefficient
+        }
         fn transmit(&self, r: &mut RayState) {
             *self.transmitted.borrow_mut() += 1;
             r.color = self.seen;

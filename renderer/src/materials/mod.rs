@@ -10,6 +10,7 @@ pub mod light;
 pub mod metal;
 pub mod mirror;
 pub mod mist;
+pub mod mixture;
 pub mod plastic;
 pub mod trans;
 
@@ -35,6 +36,8 @@ pub enum Material {
     Mist(mist::Mist),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
+    /// `mixfunc`, `mixdata`, `mixpict` between materials.
+    Mixture(mixture::Mixture),
 }
 
 /// A material named in another's string argument (illum and mirror alternates).
@@ -87,6 +90,7 @@ impl Material {
             Material::Anisotropic(a) => a.color,
             Material::Mist(m) => m.extinction,
             Material::Emitter(e) => e.color,
+            Material::Mixture(_) => Color::ZERO,
         }
     }
 }

@@ -23,8 +23,10 @@ pub const DATA_CHANNEL: u32 = COUNT as u32 + 1;
 pub enum DataSource {
     /// `brightdata`: one file.
     Bright(Arc<DataFile>),
-    /// `colordata`: red, green and blue files.
+    /// `colordata` and `texdata`: three files.
     Color([Arc<DataFile>; 3]),
+    /// `mixdata`: one file, its coordinates evaluated in order (mx_data.c).
+    Mix(Arc<DataFile>),
 }
 
 /// A `brightdata` or `colordata` pattern's data and the expressions (in its
@@ -60,7 +62,7 @@ impl DataLookup {
             pt.reverse();
         }
         let data = match &self.source {
-            DataSource::Bright(d) => [d.eval(&pt), 0.0, 0.0],
+            DataSource::Bright(d) | DataSource::Mix(d) => [d.eval(&pt), 0.0, 0.0],
             DataSource::Color(d) => [d[0].eval(&pt), d[1].eval(&pt), d[2].eval(&pt)],
         };
         apply_functions(

@@ -15,7 +15,7 @@ mod picture;
 
 pub use channels::{Channels, RayView};
 pub use data::{DataLookup, DataSource};
-pub use pattern::{Pattern, PatternKind};
+pub use pattern::{MixSource, Pattern, PatternKind, bounded};
 pub use picture::PictureLookup;
 
 use std::cell::RefCell;

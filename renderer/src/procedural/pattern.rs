@@ -1,7 +1,11 @@
 //! Patterns (p_func.c, p_data.c): a `brightfunc` scales the colour a material or light
 //! is shaded with by one expression's value, a `colorfunc` multiplies it by three; the
 //! data and picture patterns find their value(s) in a file first. Radiance keeps that
-//! colour (`pcol`) in single precision; so does this.
+//! colour (`pcol`) in single precision; so does this. A mixture (mx_func.c, mx_data.c:
+//! `mixfunc`, `mixdata`, `mixpict`) computes a coefficient the same ways; between
+//! patterns and textures it is applied here (raytrace.c `raymixture`: each side's chain
+//! on its own copy of `pcol` and `pert`, then the two blended), between materials the
+//! tracer shades both and blends the results.
 
 use radc_lang::transform::Transform;
 
@@ -9,7 +13,7 @@ use super::channels::{Channels, RayView};
 use super::data::DataLookup;
 use super::picture::PictureLookup;
 use super::{Functions, ProgramId, RayInput};
-use crate::math::{Color, Vec3};
+use crate::math::{Color, FTINY, Vec3};
 
 /// What a pattern computes its value(s) from, with what that takes.
 #[derive(Clone, Debug)]
@@ -27,6 +31,25 @@ pub enum PatternKind {
     TextureData(DataLookup),
     /// `colorpict`: the expressions are the picture coordinates.
     ColorPict(PictureLookup),
+    /// A mixture: its coefficient from `source`; between patterns, the chains of the
+    /// two sides (nearest first; empty for `void`); between materials both are empty
+    /// and the tracer shades the sides.
+    Mixture {
+        source: MixSource,
+        fore: Vec<u32>,
+        back: Vec<u32>,
+    },
+}
+
+/// Where a mixture's coefficient comes from.
+#[derive(Clone, Debug)]
+pub enum MixSource {
+    /// `mixfunc`: one expression.
+    Function,
+    /// `mixdata`: a data file's value through a function of one argument.
+    Data(DataLookup),
+    /// `mixpict`: a picture's three channels through a function of them.
+    Picture(PictureLookup),
 }
 
 /// One pattern primitive, ready to evaluate.
@@ -48,23 +71,19 @@ pub struct Pattern {
 }
 
 impl Pattern {
-    /// Multiplies `pcol` by this pattern's value for the ray, as `p_bfunc`/`p_cfunc`
-    /// do, or adds a texture's displacement to `pert` (`t_func`); leaves both
-    /// unchanged where the evaluation raised an error.
-    pub fn apply(
-        &self,
-        functions: &Functions,
-        index: u32,
-        ray: &RayView,
-        pcol: &mut Color,
-        pert: &mut Vec3,
-    ) {
-        let channels = Channels::new(ray, &self.inverse);
+    /// The pattern's value(s) for the ray (one, or three), `None` on a compute error.
+    fn values(&self, functions: &Functions, index: u32, channels: &Channels) -> Option<[f64; 3]> {
         let (program, coords, args) = (self.program, &self.exprs[..], &self.args[..]);
-        let v = match &self.kind {
-            PatternKind::Bright | PatternKind::Color | PatternKind::Texture => {
+        match &self.kind {
+            PatternKind::Bright
+            | PatternKind::Color
+            | PatternKind::Texture
+            | PatternKind::Mixture {
+                source: MixSource::Function,
+                ..
+            } => {
                 let mut input = RayInput {
-                    channels: &channels,
+                    channels,
                     args,
                     data: &[],
                 };
@@ -74,18 +93,47 @@ impl Pattern {
                     .eval(index, program, coords, &mut input, &mut v[..n])
                     .map(|()| v)
             }
-            PatternKind::BrightData(d) | PatternKind::ColorData(d) | PatternKind::TextureData(d) => {
-                d.values(functions, index, program, coords, &channels, args)
-            }
-            PatternKind::ColorPict(p) => {
-                p.values(functions, index, program, coords, &channels, args)
-            }
-        };
+            PatternKind::BrightData(d)
+            | PatternKind::ColorData(d)
+            | PatternKind::TextureData(d)
+            | PatternKind::Mixture {
+                source: MixSource::Data(d),
+                ..
+            } => d.values(functions, index, program, coords, channels, args),
+            PatternKind::ColorPict(p)
+            | PatternKind::Mixture {
+                source: MixSource::Picture(p),
+                ..
+            } => p.values(functions, index, program, coords, channels, args),
+        }
+    }
+
+    /// A mixture's coefficient for the ray, before bounding (`None`: a compute error,
+    /// after which mx_func.c leaves the ray to the mixture's own modifier).
+    pub fn coefficient(&self, functions: &Functions, index: u32, ray: &RayView) -> Option<f64> {
+        let channels = Channels::new(ray, &self.inverse);
+        self.values(functions, index, &channels).map(|v| v[0])
+    }
+
+    /// Multiplies `pcol` by this pattern's value for the ray, as `p_bfunc`/`p_cfunc`
+    /// do, adds a texture's displacement to `pert` (`t_func`), or blends what the two
+    /// sides of a mixture make of them; leaves both unchanged where the evaluation
+    /// raised an error.
+    pub fn apply(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
+        pcol: &mut Color,
+        pert: &mut Vec3,
+    ) {
+        let channels = Channels::new(ray, &self.inverse);
+        let v = self.values(functions, index, &channels);
         let Some(v) = v else { return };
         // `scalescolor`/`smultscolor` on a float colour: each product rounded to float
         // (a colour pattern's values are a float COLOR first).
         let f = |c: f64, by: f64| f64::from((c * by) as f32);
-        *pcol = match self.kind {
+        *pcol = match &self.kind {
             PatternKind::Bright | PatternKind::BrightData(_) => {
                 Color::new(f(pcol.x, v[0]), f(pcol.y, v[0]), f(pcol.z, v[0]))
             }
@@ -95,6 +143,27 @@ impl Pattern {
                     f(pcol.y, f64::from(v[1] as f32)),
                     f(pcol.z, f64::from(v[2] as f32)),
                 )
+            }
+            PatternKind::Mixture { fore, back, .. } => {
+                let coef = bounded(v[0]);
+                let side = |chain: &[u32], used: bool| {
+                    let (mut c, mut p) = (*pcol, *pert);
+                    if used {
+                        for &i in chain {
+                            if let Some(pattern) = functions.patterns.get(i as usize) {
+                                pattern.apply(functions, i, ray, &mut c, &mut p);
+                            }
+                        }
+                    }
+                    (c, p)
+                };
+                let (fc, fp) = side(fore, coef > FTINY);
+                let (bc, bp) = side(back, coef < 1.0 - FTINY);
+                *pert = fp * coef + bp * (1.0 - coef);
+                // scalescolor on each side, then saddscolor: floats throughout.
+                let mix =
+                    |a: f64, b: f64| f64::from((f(a, coef) as f32) + (f(b, 1.0 - coef) as f32));
+                Color::new(mix(fc.x, bc.x), mix(fc.y, bc.y), mix(fc.z, bc.z))
             }
             PatternKind::Texture | PatternKind::TextureData(_) => {
                 // The displacement turns with the texture (`multv3` by `fxp`) and is
@@ -109,4 +178,9 @@ impl Pattern {
             }
         };
     }
+}
+
+/// raymixture's bounds on a coefficient: above 1 is 1, below 0 is 0 (a NaN stays).
+pub fn bounded(coef: f64) -> f64 {
+    coef.clamp(0.0, 1.0)
 }
