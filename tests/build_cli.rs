@@ -79,6 +79,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "data_patterns-",
             "texture_data-",
             "mixtures-",
+            "functions-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

@@ -89,13 +89,7 @@ fn refusal_scene(type_name: &str) -> Option<String> {
                       void mixtext x 5 a b t.fnt . A 0 9 0 0 0 1 0 0 0 1 0\n\
                       x plastic m 0 0 5 .5 .5 .5 0 0\n"
             .to_string(),
-        "plasfunc" => material("void plasfunc m 2 r f.cal 0 4 .5 .5 .5 0"),
-        "metfunc" => material("void metfunc m 2 r f.cal 0 4 .5 .5 .5 0"),
-        "transfunc" => material("void transfunc m 2 r f.cal 0 6 .5 .5 .5 0 0 0"),
         "BRTDfunc" => material("void BRTDfunc m 10 0 0 0 0 0 0 0 0 0 f.cal 0 9 0 0 0 0 0 0 0 0 0"),
-        "plasdata" => material("void plasdata m 4 f d.dat f.cal Px 0 4 .5 .5 .5 0"),
-        "metdata" => material("void metdata m 4 f d.dat f.cal Px 0 4 .5 .5 .5 0"),
-        "transdata" => material("void transdata m 4 f d.dat f.cal Px 0 6 .5 .5 .5 0 0 0"),
         "WGMDfunc" => material(
             "void WGMDfunc m 13 void 0 .1 .1 void 0 .1 .1 void 1 0 0 f.cal 0 9 .5 .5 .5 .5 .5 .5 .5 .5 .5",
         ),

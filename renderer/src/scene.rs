@@ -20,6 +20,7 @@ use crate::lights::{Lamp, Source, SourceShape, SourceTarget};
 use crate::materials::anisotropic::Anisotropic;
 use crate::materials::antimatter::Antimatter;
 use crate::materials::dielectric::Dielectric;
+use crate::materials::function::FunctionMaterial;
 use crate::materials::glass::Glass;
 use crate::materials::light::{Emitter, EmitterKind, Spot};
 use crate::materials::mirror::Mirror;
@@ -720,6 +721,7 @@ impl Compiler<'_> {
     fn takes_modifier(&self, kind: PrimId, texture: bool) -> bool {
         self.ir.get(kind).is_some_and(|k| match k.kind {
             PrimKind::Plastic { .. } | PrimKind::Metal { .. } => true,
+            PrimKind::Other { .. } if is_function_material(k.schema.name) => true,
             PrimKind::Trans { .. }
             | PrimKind::Light { .. }
             | PrimKind::Glow { .. }
@@ -865,6 +867,118 @@ impl Compiler<'_> {
                 fore: Vec::new(),
                 back: Vec::new(),
             },
+        })
+    }
+
+    /// A function or data material: its colour and parts from the reals, its function
+    /// (and, for the data forms, the data file and coordinate functions) compiled as a
+    /// pattern the material evaluates per light sample.
+    fn function_material(
+        &mut self,
+        id: PrimId,
+        name: &str,
+        strings: &[String],
+        reals: &[f64],
+    ) -> Option<FunctionMaterial> {
+        use crate::materials::function::FunctionKind;
+        let kind = match name {
+            "plasfunc" | "plasdata" => FunctionKind::Plastic,
+            "metfunc" | "metdata" => FunctionKind::Metal,
+            _ => FunctionKind::Trans,
+        };
+        let data_form = name.ends_with("data");
+        let (want_strings, want_reals) = (
+            if data_form { 4 } else { 2 },
+            if kind == FunctionKind::Trans { 6 } else { 4 },
+        );
+        if strings.len() < want_strings || reals.len() < want_reals {
+            self.unsupported(id, "bad # arguments");
+            return None;
+        }
+        let data = if data_form {
+            match self.ir.data.files.get(strings[1].as_str()) {
+                Some(d) => Some(d.clone()),
+                None => {
+                    self.refuse_with(
+                        id,
+                        format!("its data file '{}' could not be loaded", strings[1]),
+                    );
+                    return None;
+                }
+            }
+        } else {
+            None
+        };
+        let file_at = if data_form { 2 } else { 1 };
+        let file = &strings[file_at];
+        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
+            self.unsupported(id, "its function file could not be loaded");
+            return None;
+        };
+        let program = self.functions.program(file, module);
+        self.functions.bind_shading_variables(program);
+        use crate::procedural::brdf::{LIGHT_CHANNEL, VALUE_CHANNEL};
+        let light: Vec<u32> = (0..4).map(|i| LIGHT_CHANNEL + i).collect();
+        let dims = data.as_ref().map_or(0, |d| d.dimensions());
+        let coords_end = file_at + 1 + dims;
+        if strings.len() < coords_end {
+            self.unsupported(id, "bad # arguments");
+            return None;
+        }
+        let mut coords = Vec::new();
+        for f in &strings[file_at + 1..coords_end] {
+            match self.functions.add_call(program, f, &light) {
+                Ok(k) => coords.push(k),
+                Err(why) => {
+                    self.refuse_with(id, why);
+                    return None;
+                }
+            }
+        }
+        let mut value_args = Vec::new();
+        if data_form {
+            value_args.push(VALUE_CHANNEL);
+        }
+        value_args.extend(&light);
+        let value = match self.functions.add_call(program, &strings[0], &value_args) {
+            Ok(k) => k,
+            Err(why) => {
+                self.refuse_with(id, why);
+                return None;
+            }
+        };
+        let words: Vec<(&str, radc_lang::Span)> = strings[coords_end..]
+            .iter()
+            .map(|w| (w.as_str(), radc_lang::Span::default()))
+            .collect();
+        let Ok(mut inverse) = radc_lang::transform::Transform::parse_inverse(&words) else {
+            self.unsupported(id, "bad transform");
+            return None;
+        };
+        inverse.scale = inverse.scale.abs();
+        let pattern = self.functions.patterns.len() as u32;
+        let who = self
+            .ir
+            .get(id)
+            .map_or_else(String::new, |p| format!("{} '{}'", p.schema.name, p.name));
+        self.functions.patterns.push(Pattern {
+            who,
+            kind: PatternKind::Brdf(crate::procedural::BrdfLookup { data, value }),
+            program,
+            exprs: coords,
+            args: reals.to_vec(),
+            inverse,
+            forward: None,
+        });
+        let real = |i: usize| reals.get(i).copied().unwrap_or(0.0);
+        Some(FunctionMaterial {
+            kind,
+            color: Vec3::new(real(0), real(1), real(2)),
+            spec: real(3),
+            transmission: real(4),
+            transmitted_specular: real(5),
+            pattern,
+            texture: Vec3::ZERO,
         })
     }
 
@@ -1172,6 +1286,10 @@ impl Compiler<'_> {
                 };
                 Material::Mist(Mist { extinction })
             }
+            PrimKind::Other { strings, reals } if is_function_material(p.schema.name) => {
+                let name = p.schema.name;
+                Material::Function(self.function_material(kind, name, strings, reals)?)
+            }
             PrimKind::Other { strings, reals }
                 if matches!(p.schema.name, "plastic2" | "metal2" | "trans2") =>
             {
@@ -1350,6 +1468,14 @@ fn refused_on(texture: bool) -> &'static str {
     } else {
         "patterns on this material type are not rendered yet"
     }
+}
+
+/// The function and data materials (m_brdf.c `m_brdf2`).
+fn is_function_material(name: &str) -> bool {
+    matches!(
+        name,
+        "plasfunc" | "metfunc" | "transfunc" | "plasdata" | "metdata" | "transdata"
+    )
 }
 
 /// Whether a pattern type displaces the normal (a texture).

@@ -57,12 +57,13 @@ fn jit_and_interpreter_shade_data_patterns_alike() {
     same_pixels("data_patterns.rad", 800);
 }
 
-/// Texture data and mixtures (between materials, patterns and textures, from
-/// functions, data and a picture).
+/// Texture data, mixtures (between materials, patterns and textures, from
+/// functions, data and a picture) and the function and data materials.
 #[test]
 fn jit_and_interpreter_shade_mixtures_and_texture_data_alike() {
     same_pixels("texture_data.rad", 800);
     same_pixels("mixtures.rad", 800);
+    same_pixels("functions.rad", 800);
 }
 
 fn same_pixels(scene: &str, min_seen: usize) {

@@ -308,6 +308,16 @@ def cases():
     case("mixtures-view", "mixtures.rad", ["-av", ".05", ".05", ".05"], mix_view, "-ovL")
     case("mixtures-irradiance", "mixtures.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    fn_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .3], spread=2.5)
+    fn_view += box_rays(rng, 30, [-1, -2, 1], [2, 0, 2], toward=[0, 3, 2], spread=1.5)
+    fn_view += box_rays(rng, 30, [-2.5, -2, .5], [-.5, -1, 1.5], toward=[-1.5, 0, 1], spread=.6)
+    fn_view += box_rays(rng, 30, [-.5, -3, .5], [.5, -2.5, 1.5], toward=[0, -2.75, 3], spread=.6)
+    fn_view += box_rays(rng, 30, [0, -1, .5], [2.5, 0, 1.5], toward=[1.5, .5, .8], spread=.5)
+    fn_view += box_rays(rng, 30, [0, -2, 1], [2, 0, 2], toward=[-4, 0, 1.5], spread=2)
+    fn_view += box_rays(rng, 30, [2, -2, .5], [3.5, -.5, 1.5], toward=[2.75, -1.25, 2.5], spread=.6)
+    case("functions-view", "functions.rad", ["-av", ".05", ".05", ".05"], fn_view, "-ovL")
+    case("functions-irradiance", "functions.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     return out
 
 

@@ -204,6 +204,23 @@ impl Module {
         self.push_def(ident, None, DefKind::Assign, body, Span::default());
     }
 
+    /// Binds a host variable to an input channel in the global context (`name = $chan`),
+    /// as the renderer's per-shading `varset`s (`NxP`, `CrP`, ...) are made visible to a
+    /// function file: its definitions then read it like any ray channel.
+    pub fn bind_channel(&mut self, name: &str, chan: u32) {
+        let context = std::mem::take(&mut self.context);
+        let ident = Ident {
+            name: name.to_string(),
+            span: Span::default(),
+        };
+        let body = Expr {
+            node: Node::Chan(chan),
+            span: Span::default(),
+        };
+        self.push_def(ident, None, DefKind::Assign, body, Span::default());
+        self.context = context;
+    }
+
     /// A name the host provides without a visible definition (the renderer's
     /// per-shading variables, rayinit.cal when its text is not at hand).
     pub fn declare_host_name(&mut self, name: &str, arity: Option<usize>, constant: bool) {

@@ -240,7 +240,7 @@ impl<'a> Tracer<'a> {
         let Some(functions) = self.scene.functions.as_deref() else {
             return self.shade_with(r, Some(material));
         };
-        let view = ray_view(r);
+        let view = r.view();
         let mut pcol = Color::ONE;
         let mut pert = Vec3::ZERO;
         for &i in patterns {
@@ -255,6 +255,10 @@ impl<'a> Tracer<'a> {
                 n.texture = pert;
             }
             Material::Emitter(e) => e.color *= pcol,
+            Material::Function(f) => {
+                f.color *= pcol;
+                f.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));
@@ -269,7 +273,12 @@ impl<'a> Tracer<'a> {
         if self.options.irradiance_at_hits && primary {
             match material {
                 Some(m) if m.is_transparent() => return self.transmit(r),
-                Some(Material::Plastic(_) | Material::Mirror(_) | Material::Anisotropic(_)) => {
+                Some(
+                    Material::Plastic(_)
+                    | Material::Mirror(_)
+                    | Material::Anisotropic(_)
+                    | Material::Function(_),
+                ) => {
                     return LAMBERTIAN.shade(self, r);
                 }
                 _ => {}
@@ -285,6 +294,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Mist(m)) => m.shade(self, r),
             Some(Material::Emitter(e)) => e.shade(self, r),
             Some(Material::Mixture(m)) => m.shade(self, r),
+            Some(Material::Function(f)) => f.shade(self, r),
             None => self.transmit(r),
         }
     }
@@ -414,19 +424,6 @@ impl<'a> Tracer<'a> {
     }
 }
 
-/// What the scene's functions see of a ray at its hit.
-fn ray_view(r: &RayState) -> crate::procedural::RayView {
-    crate::procedural::RayView {
-        dir: r.dir,
-        normal: r.normal,
-        point: r.point,
-        total_distance: r.path_length + r.length,
-        length: r.length,
-        rod: r.rod,
-        uv: [0.0, 0.0],
-    }
-}
-
 /// The tracer is the context materials shade in when rendering.
 impl ShadingContext for Tracer<'_> {
     fn options(&self) -> &Options {
@@ -465,10 +462,23 @@ impl ShadingContext for Tracer<'_> {
         Tracer::transmit(self, r)
     }
 
+    fn brdf(
+        &self,
+        pattern: u32,
+        view: &crate::procedural::RayView,
+        shade: &crate::procedural::ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<f64> {
+        let functions = self.scene.functions.as_deref()?;
+        let p = functions.patterns.get(pattern as usize)?;
+        p.brdf(functions, pattern, view, shade, dir, omega)
+    }
+
     fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64> {
         let functions = self.scene.functions.as_deref()?;
         let p = functions.patterns.get(pattern as usize)?;
-        p.coefficient(functions, pattern, &ray_view(r))
+        p.coefficient(functions, pattern, &r.view())
     }
 
     fn ambient(&self, r: &RayState, coef: Color, normal: Vec3) -> Color {

@@ -140,3 +140,18 @@ impl RayState {
         }
     }
 }
+
+impl RayState {
+    /// What the scene's functions see of the ray at its hit.
+    pub fn view(&self) -> crate::procedural::RayView {
+        crate::procedural::RayView {
+            dir: self.dir,
+            normal: self.normal,
+            point: self.point,
+            total_distance: self.path_length + self.length,
+            length: self.length,
+            rod: self.rod,
+            uv: [0.0, 0.0],
+        }
+    }
+}

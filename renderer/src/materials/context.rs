@@ -42,6 +42,17 @@ pub trait ShadingContext {
     /// Continues `r` unchanged past its hit (`raytrans`).
     fn transmit(&self, r: &mut RayState);
 
+    /// A function or data material's function (pattern `pattern`) for light from
+    /// `dir` of solid angle `omega` at the hit `view` shows; `None` on a compute error.
+    fn brdf(
+        &self,
+        pattern: u32,
+        view: &crate::procedural::RayView,
+        shade: &crate::procedural::ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<f64>;
+
     /// The coefficient of the mixture whose pattern is `pattern` for `r`'s hit, before
     /// bounding; `None` on a compute error (warned of once).
     fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64>;
@@ -82,6 +93,9 @@ pub mod scripted {
         /// Materials `shade` was asked for, with the ray's weight and coefficient; each
         /// shades its ray `material + 1` grey and sets both lengths to that.
         pub shaded: RefCell<Vec<(MaterialId, f64, Color)>>,
+        /// What `brdf` answers, and the (normal, light direction, solid angle) asked.
+        pub brdf_value: Option<f64>,
+        pub brdf_calls: RefCell<Vec<(Vec3, Vec3, f64)>>,
     }
 
     impl Default for Scripted {
@@ -97,6 +111,8 @@ pub mod scripted {
                 ambient_normals: RefCell::new(Vec::new()),
                 coefficient: None,
                 shaded: RefCell::new(Vec::new()),
+                brdf_value: None,
+                brdf_calls: RefCell::new(Vec::new()),
             }
         }
     }
@@ -148,6 +164,19 @@ pub mod scripted {
                 r.mirror_length = v;
                 r.other_length = v;
             }
+        }
+        fn brdf(
+            &self,
+            _: u32,
+            _: &crate::procedural::RayView,
+            shade: &crate::procedural::ShadeState,
+            dir: Vec3,
+            omega: f64,
+        ) -> Option<f64> {
+            self.brdf_calls
+                .borrow_mut()
+                .push((shade.normal, dir, omega));
+            self.brdf_value
         }
         fn mixture_coefficient(&self, _: u32, _: &RayState) -> Option<f64> {
             self.coefficient

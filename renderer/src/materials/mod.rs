@@ -5,6 +5,7 @@ pub mod anisotropic;
 pub mod antimatter;
 pub mod context;
 pub mod dielectric;
+pub mod function;
 pub mod glass;
 pub mod light;
 pub mod metal;
@@ -36,6 +37,8 @@ pub enum Material {
     Mist(mist::Mist),
     /// `light`, `glow`, `illum`.
     Emitter(light::Emitter),
+    /// `plasfunc`, `metfunc`, `transfunc`, `plasdata`, `metdata`, `transdata`.
+    Function(function::FunctionMaterial),
     /// `mixfunc`, `mixdata`, `mixpict` between materials.
     Mixture(mixture::Mixture),
 }
@@ -91,6 +94,7 @@ impl Material {
             Material::Mist(m) => m.extinction,
             Material::Emitter(e) => e.color,
             Material::Mixture(_) => Color::ZERO,
+            Material::Function(f) => f.color,
         }
     }
 }

@@ -111,13 +111,7 @@ impl Functions {
         channel: u32,
         triple: bool,
     ) -> Result<usize, String> {
-        let plain = name
-            .chars()
-            .next()
-            .is_some_and(|c| c.is_ascii_alphabetic() || c == '`')
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '`'));
+        let plain = is_function_name(name);
         if !plain {
             return Err(format!("'{name}' is not a function name"));
         }
@@ -153,9 +147,19 @@ impl Functions {
     }
 }
 
+/// A name a material or pattern may call: a plain identifier (a context suffix allowed).
+pub(super) fn is_function_name(name: &str) -> bool {
+    name.chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '`')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '`'))
+}
+
 /// calfunc.c `fundefined`: a defined function's parameter count, else the library
 /// function's. Library functions of variable arity are not modelled (`None`).
-fn arity(module: &Module, name: &str) -> Option<usize> {
+pub(super) fn arity(module: &Module, name: &str) -> Option<usize> {
     if let Some(sym) = module.lookup(name) {
         let s = module.symbol(sym);
         if let Some(params) = s.stack.last().and_then(|&d| module.def(d).params.as_ref()) {

@@ -8,11 +8,13 @@
 //! Only what a reachable material or light uses is compiled (`Functions` is built by
 //! the scene compiler from the modifier chains it meets).
 
+pub mod brdf;
 mod channels;
 mod data;
 mod pattern;
 mod picture;
 
+pub use brdf::{BrdfLookup, SHADING_VARIABLES, ShadeState};
 pub use channels::{Channels, RayView};
 pub use data::{DataLookup, DataSource};
 pub use pattern::{MixSource, Pattern, PatternKind, bounded};

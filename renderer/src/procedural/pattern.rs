@@ -9,6 +9,7 @@
 
 use radc_lang::transform::Transform;
 
+use super::brdf::{BrdfLookup, ShadeState};
 use super::channels::{Channels, RayView};
 use super::data::DataLookup;
 use super::picture::PictureLookup;
@@ -39,6 +40,9 @@ pub enum PatternKind {
         fore: Vec<u32>,
         back: Vec<u32>,
     },
+    /// A function or data material's function (its expressions are a data form's
+    /// coordinate calls), evaluated per light sample by the material.
+    Brdf(BrdfLookup),
 }
 
 /// Where a mixture's coefficient comes from.
@@ -105,7 +109,36 @@ impl Pattern {
                 source: MixSource::Picture(p),
                 ..
             } => p.values(functions, index, program, coords, channels, args),
+            PatternKind::Brdf(_) => None,
         }
+    }
+
+    /// A function or data material's function for light from `dir` of solid angle
+    /// `omega` (`None`: a compute error, or not such a pattern).
+    pub fn brdf(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
+        shade: &ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<f64> {
+        let PatternKind::Brdf(b) = &self.kind else {
+            return None;
+        };
+        b.value(
+            functions,
+            index,
+            self.program,
+            &self.exprs,
+            ray,
+            &self.inverse,
+            &self.args,
+            shade,
+            dir,
+            omega,
+        )
     }
 
     /// A mixture's coefficient for the ray, before bounding (`None`: a compute error,
@@ -165,6 +198,7 @@ impl Pattern {
                     |a: f64, b: f64| f64::from((f(a, coef) as f32) + (f(b, 1.0 - coef) as f32));
                 Color::new(mix(fc.x, bc.x), mix(fc.y, bc.y), mix(fc.z, bc.z))
             }
+            PatternKind::Brdf(_) => return,
             PatternKind::Texture | PatternKind::TextureData(_) => {
                 // The displacement turns with the texture (`multv3` by `fxp`) and is
                 // divided by its scale (`VSUM(pert, pert, disp, 1/sca)`), so only the

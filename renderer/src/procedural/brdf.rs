@@ -1,0 +1,141 @@
+//! The functions of function and data materials (m_brdf.c `dirbrdf` for `plasfunc`,
+//! `metfunc`, `transfunc`, `plasdata`, `metdata`, `transdata`): for each light source
+//! sample the material's function is called with the light's direction in the
+//! function's frame and its solid angle (`f(ldx, ldy, ldz, omega)`); the data forms first
+//! call one function per data dimension the same way for the point to look up, then
+//! the main function with the value found in front (`f(value, ldx, ldy, ldz, omega)`).
+//! The shading variables m_brdf.c sets with `varset` (`NxP NyP NzP`, the perturbed
+//! normal in the function's frame, `RdotP`, and the pattern-modified colour `CrP CgP
+//! CbP`) reach the function file through channels after the data's.
+
+use std::sync::Arc;
+
+use radc_lang::datafile::DataFile;
+
+use super::channels::{Channels, RayView};
+use super::data::DATA_CHANNEL;
+use super::{Functions, ProgramId, RayInput};
+use crate::math::{Color, Vec3};
+
+/// The light direction and solid angle arrive as `$28`..`$31`, a data value as `$32`.
+pub const LIGHT_CHANNEL: u32 = DATA_CHANNEL;
+pub const VALUE_CHANNEL: u32 = DATA_CHANNEL + 4;
+/// `NxP`, `NyP`, `NzP`, `RdotP`, `CrP`, `CgP`, `CbP` from `$33` on.
+pub const SHADE_CHANNEL: u32 = DATA_CHANNEL + 5;
+pub const SHADING_VARIABLES: [&str; 7] = ["NxP", "NyP", "NzP", "RdotP", "CrP", "CgP", "CbP"];
+
+/// A function or data material's calls, in its program.
+#[derive(Clone, Debug)]
+pub struct BrdfLookup {
+    /// The data form's file; the pattern's expressions are then the coordinate calls.
+    pub data: Option<Arc<DataFile>>,
+    /// The main function's call.
+    pub value: usize,
+}
+
+/// What the material works out at its hit before the light loop: the (perturbed,
+/// flipped) normal and its cosine with the ray, and its pattern-modified colour.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadeState {
+    pub normal: Vec3,
+    pub cos: f64,
+    pub color: Color,
+}
+
+impl BrdfLookup {
+    /// The function's value for light from `dir` (world) of solid angle `omega`;
+    /// `None` on a compute error.
+    #[allow(clippy::too_many_arguments)]
+    pub fn value(
+        &self,
+        functions: &Functions,
+        pattern: u32,
+        program: ProgramId,
+        coords: &[usize],
+        ray: &RayView,
+        inverse: &radc_lang::transform::Transform,
+        args: &[f64],
+        shade: &ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<f64> {
+        let channels = Channels::new(ray, inverse);
+        let turn = |v: Vec3| {
+            let m = &inverse.matrix;
+            let s = inverse.scale;
+            [0, 1, 2].map(|j| (v.x * m[0][j] + v.y * m[1][j] + v.z * m[2][j]) / s)
+        };
+        let l = turn(dir);
+        let n = turn(shade.normal);
+        let c = shade.color;
+        let mut extra = [
+            l[0], l[1], l[2], omega, 0.0, n[0], n[1], n[2], shade.cos, c.x, c.y, c.z,
+        ];
+        if let Some(d) = &self.data {
+            let mut pt = vec![0.0; coords.len()];
+            let mut input = RayInput {
+                channels: &channels,
+                args,
+                data: &extra,
+            };
+            functions.eval(pattern, program, coords, &mut input, &mut pt)?;
+            extra[4] = d.eval(&pt);
+        }
+        let mut input = RayInput {
+            channels: &channels,
+            args,
+            data: &extra,
+        };
+        let mut v = [0.0];
+        functions.eval(pattern, program, &[self.value], &mut input, &mut v)?;
+        Some(v[0])
+    }
+}
+
+impl Functions {
+    /// Makes m_brdf.c's shading variables visible to program `p` (once).
+    pub fn bind_shading_variables(&mut self, p: ProgramId) {
+        let Some(program) = self.programs.get_mut(p.0 as usize) else {
+            return;
+        };
+        for (i, name) in SHADING_VARIABLES.iter().enumerate() {
+            let bound = program
+                .module
+                .lookup(name)
+                .and_then(|s| program.module.current_def(s))
+                .is_some();
+            if !bound {
+                program.module.bind_channel(name, SHADE_CHANNEL + i as u32);
+            }
+        }
+    }
+
+    /// Adds the call `name($c1, $c2, ...)` of the channels given to program `p` (C's
+    /// `funvalue(name, n, args)`: a function of fewer parameters sees the first ones);
+    /// returns its expression's index.
+    pub fn add_call(
+        &mut self,
+        p: ProgramId,
+        name: &str,
+        channels: &[u32],
+    ) -> Result<usize, String> {
+        if !super::data::is_function_name(name) {
+            return Err(format!("'{name}' is not a function name"));
+        }
+        let module = &self
+            .programs
+            .get(p.0 as usize)
+            .ok_or_else(|| "no such program".to_string())?
+            .module;
+        let arity = super::data::arity(module, name)
+            .ok_or_else(|| format!("'{name}' is not a function of fixed arity radc evaluates"))?;
+        if arity > channels.len() {
+            return Err(format!(
+                "'{name}' takes {arity} arguments; the material passes {}",
+                channels.len()
+            ));
+        }
+        let words: Vec<String> = channels[..arity].iter().map(|c| format!("${c}")).collect();
+        self.add_expression(p, &format!("{name}({})", words.join(",")))
+    }
+}
