@@ -80,6 +80,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "texture_data-",
             "mixtures-",
             "functions-",
+            "brtd-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

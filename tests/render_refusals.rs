@@ -89,7 +89,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
                       void mixtext x 5 a b t.fnt . A 0 9 0 0 0 1 0 0 0 1 0\n\
                       x plastic m 0 0 5 .5 .5 .5 0 0\n"
             .to_string(),
-        "BRTDfunc" => material("void BRTDfunc m 10 0 0 0 0 0 0 0 0 0 f.cal 0 9 0 0 0 0 0 0 0 0 0"),
         "WGMDfunc" => material(
             "void WGMDfunc m 13 void 0 .1 .1 void 0 .1 .1 void 1 0 0 f.cal 0 9 .5 .5 .5 .5 .5 .5 .5 .5 .5",
         ),

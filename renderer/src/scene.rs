@@ -19,6 +19,7 @@ use crate::bvh::Bvh;
 use crate::lights::{Lamp, Source, SourceShape, SourceTarget};
 use crate::materials::anisotropic::Anisotropic;
 use crate::materials::antimatter::Antimatter;
+use crate::materials::brtd::Brtd;
 use crate::materials::dielectric::Dielectric;
 use crate::materials::function::FunctionMaterial;
 use crate::materials::glass::Glass;
@@ -721,7 +722,11 @@ impl Compiler<'_> {
     fn takes_modifier(&self, kind: PrimId, texture: bool) -> bool {
         self.ir.get(kind).is_some_and(|k| match k.kind {
             PrimKind::Plastic { .. } | PrimKind::Metal { .. } => true,
-            PrimKind::Other { .. } if is_function_material(k.schema.name) => true,
+            PrimKind::Other { .. }
+                if is_function_material(k.schema.name) || k.schema.name == "BRTDfunc" =>
+            {
+                true
+            }
             PrimKind::Trans { .. }
             | PrimKind::Light { .. }
             | PrimKind::Glow { .. }
@@ -978,6 +983,85 @@ impl Compiler<'_> {
             transmission: real(4),
             transmitted_specular: real(5),
             pattern,
+            texture: Vec3::ZERO,
+        })
+    }
+
+    /// A BRTDfunc: its reals, and its expressions and directional functions compiled as
+    /// a pattern the material evaluates.
+    fn brtd_material(&mut self, id: PrimId, strings: &[String], reals: &[f64]) -> Option<Brtd> {
+        use crate::procedural::Directional;
+        use crate::procedural::brdf::LIGHT_CHANNEL;
+        if strings.len() < 10 || reals.len() < 9 {
+            self.unsupported(id, "bad # arguments");
+            return None;
+        }
+        let file = &strings[9];
+        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
+            self.unsupported(id, "its function file could not be loaded");
+            return None;
+        };
+        let program = self.functions.program(file, module);
+        self.functions.bind_shading_variables(program);
+        let mut exprs = Vec::new();
+        for e in &strings[..6] {
+            match self.functions.add_expression(program, e) {
+                Ok(k) => exprs.push(k),
+                Err(why) => {
+                    self.refuse_with(id, why);
+                    return None;
+                }
+            }
+        }
+        let light: Vec<u32> = (0..4).map(|i| LIGHT_CHANNEL + i).collect();
+        let mut directional = [Directional::Zero; 3];
+        for i in 0..3 {
+            let name = &strings[6 + i];
+            directional[i] = if name == "0" {
+                Directional::Zero
+            } else if let Some(j) = (0..i).find(|&j| strings[6 + j] == *name) {
+                Directional::SameAs(j)
+            } else {
+                match self.functions.add_call(program, name, &light) {
+                    Ok(k) => Directional::Call(k),
+                    Err(why) => {
+                        self.refuse_with(id, why);
+                        return None;
+                    }
+                }
+            };
+        }
+        let words: Vec<(&str, radc_lang::Span)> = strings[10..]
+            .iter()
+            .map(|w| (w.as_str(), radc_lang::Span::default()))
+            .collect();
+        let Ok(mut inverse) = radc_lang::transform::Transform::parse_inverse(&words) else {
+            self.unsupported(id, "bad transform");
+            return None;
+        };
+        inverse.scale = inverse.scale.abs();
+        let pattern = self.functions.patterns.len() as u32;
+        let who = self
+            .ir
+            .get(id)
+            .map_or_else(String::new, |p| format!("{} '{}'", p.schema.name, p.name));
+        self.functions.patterns.push(Pattern {
+            who,
+            kind: PatternKind::Brtd(crate::procedural::BrtdLookup { directional }),
+            program,
+            exprs,
+            args: reals.to_vec(),
+            inverse,
+            forward: None,
+        });
+        let rgb = |i: usize| Vec3::new(reals[i], reals[i + 1], reals[i + 2]);
+        Some(Brtd {
+            front_diffuse: rgb(0),
+            back_diffuse: rgb(3),
+            transmitted_diffuse: rgb(6),
+            directional: strings[6] != "0",
+            pattern,
+            pattern_color: Vec3::ONE,
             texture: Vec3::ZERO,
         })
     }
@@ -1285,6 +1369,10 @@ impl Compiler<'_> {
                     Vec3::ZERO
                 };
                 Material::Mist(Mist { extinction })
+            }
+            PrimKind::Other { strings, reals } if p.schema.name == "BRTDfunc" => {
+                let transparent = strings.iter().skip(3).take(3).any(|w| w != "0");
+                Material::Brtd(self.brtd_material(kind, strings, reals)?, transparent)
             }
             PrimKind::Other { strings, reals } if is_function_material(p.schema.name) => {
                 let name = p.schema.name;

@@ -64,6 +64,7 @@ fn jit_and_interpreter_shade_mixtures_and_texture_data_alike() {
     same_pixels("texture_data.rad", 800);
     same_pixels("mixtures.rad", 800);
     same_pixels("functions.rad", 800);
+    same_pixels("brtd.rad", 800);
 }
 
 fn same_pixels(scene: &str, min_seen: usize) {

@@ -318,6 +318,15 @@ def cases():
     case("functions-view", "functions.rad", ["-av", ".05", ".05", ".05"], fn_view, "-ovL")
     case("functions-irradiance", "functions.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    br_view = box_rays(rng, 60, [-3, -4, .5], [3, -2, 3], toward=[0, 0, .3], spread=2.5)
+    br_view += box_rays(rng, 40, [-1, -2, 1], [1, 0, 2], toward=[0, 2, 1.5], spread=1.2)
+    br_view += box_rays(rng, 40, [-2.5, -3, .5], [-.5, -2, 1.5], toward=[-1.5, -1, 1], spread=.6)
+    br_view += box_rays(rng, 30, [-.5, -3, .5], [.5, -2.5, 1.5], toward=[0, -2.75, 3], spread=.6)
+    br_view += box_rays(rng, 20, [-.5, -3, 4], [.5, -2.5, 4.5], toward=[0, -2.75, 3], spread=.6)
+    br_view += box_rays(rng, 30, [-1, 2, 1], [1, 2.8, 2], toward=[0, 0, 1.5], spread=1.2)
+    case("brtd-view", "brtd.rad", ["-av", ".05", ".05", ".05"], br_view, "-ovL")
+    case("brtd-irradiance", "brtd.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
     return out
 
 

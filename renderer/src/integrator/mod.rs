@@ -259,6 +259,10 @@ impl<'a> Tracer<'a> {
                 f.color *= pcol;
                 f.texture = pert;
             }
+            Material::Brtd(b, _) => {
+                b.pattern_color = pcol;
+                b.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));
@@ -277,7 +281,8 @@ impl<'a> Tracer<'a> {
                     Material::Plastic(_)
                     | Material::Mirror(_)
                     | Material::Anisotropic(_)
-                    | Material::Function(_),
+                    | Material::Function(_)
+                    | Material::Brtd(..),
                 ) => {
                     return LAMBERTIAN.shade(self, r);
                 }
@@ -295,6 +300,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Emitter(e)) => e.shade(self, r),
             Some(Material::Mixture(m)) => m.shade(self, r),
             Some(Material::Function(f)) => f.shade(self, r),
+            Some(Material::Brtd(b, _)) => b.shade(self, r),
             None => self.transmit(r),
         }
     }
@@ -473,6 +479,25 @@ impl ShadingContext for Tracer<'_> {
         let functions = self.scene.functions.as_deref()?;
         let p = functions.patterns.get(pattern as usize)?;
         p.brdf(functions, pattern, view, shade, dir, omega)
+    }
+
+    fn brtd(
+        &self,
+        pattern: u32,
+        view: &crate::procedural::RayView,
+        shade: &crate::procedural::ShadeState,
+        part: crate::materials::brtd::BrtdPart,
+    ) -> Option<Color> {
+        use crate::materials::brtd::BrtdPart;
+        let functions = self.scene.functions.as_deref()?;
+        let p = functions.patterns.get(pattern as usize)?;
+        match part {
+            BrtdPart::Mirror => p.brtd_coefficient(functions, pattern, view, shade, 0),
+            BrtdPart::Straight => p.brtd_coefficient(functions, pattern, view, shade, 1),
+            BrtdPart::Directional(dir, omega) => {
+                p.brtd_directional(functions, pattern, view, shade, dir, omega)
+            }
+        }
     }
 
     fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64> {

@@ -53,6 +53,16 @@ pub trait ShadingContext {
         omega: f64,
     ) -> Option<f64>;
 
+    /// A BRTDfunc's colours (pattern `pattern`): its mirror ray's, straight ray's, or
+    /// directional part for a light sample; `None` on a compute error.
+    fn brtd(
+        &self,
+        pattern: u32,
+        view: &crate::procedural::RayView,
+        shade: &crate::procedural::ShadeState,
+        part: crate::materials::brtd::BrtdPart,
+    ) -> Option<Color>;
+
     /// The coefficient of the mixture whose pattern is `pattern` for `r`'s hit, before
     /// bounding; `None` on a compute error (warned of once).
     fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64>;
@@ -96,6 +106,8 @@ pub mod scripted {
         /// What `brdf` answers, and the (normal, light direction, solid angle) asked.
         pub brdf_value: Option<f64>,
         pub brdf_calls: RefCell<Vec<(Vec3, Vec3, f64)>>,
+        /// What `brtd` answers for every part.
+        pub brtd_value: Option<Color>,
     }
 
     impl Default for Scripted {
@@ -113,6 +125,7 @@ pub mod scripted {
                 shaded: RefCell::new(Vec::new()),
                 brdf_value: None,
                 brdf_calls: RefCell::new(Vec::new()),
+                brtd_value: None,
             }
         }
     }
@@ -177,6 +190,15 @@ pub mod scripted {
                 .borrow_mut()
                 .push((shade.normal, dir, omega));
             self.brdf_value
+        }
+        fn brtd(
+            &self,
+            _: u32,
+            _: &crate::procedural::RayView,
+            _: &crate::procedural::ShadeState,
+            _: crate::materials::brtd::BrtdPart,
+        ) -> Option<Color> {
+            self.brtd_value
         }
         fn mixture_coefficient(&self, _: u32, _: &RayState) -> Option<f64> {
             self.coefficient

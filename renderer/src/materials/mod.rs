@@ -3,6 +3,7 @@
 
 pub mod anisotropic;
 pub mod antimatter;
+pub mod brtd;
 pub mod context;
 pub mod dielectric;
 pub mod function;
@@ -39,6 +40,8 @@ pub enum Material {
     Emitter(light::Emitter),
     /// `plasfunc`, `metfunc`, `transfunc`, `plasdata`, `metdata`, `transdata`.
     Function(function::FunctionMaterial),
+    /// `BRTDfunc`; transparent (for ties) when a straight-through expression is not `0`.
+    Brtd(brtd::Brtd, bool),
     /// `mixfunc`, `mixdata`, `mixpict` between materials.
     Mixture(mixture::Mixture),
 }
@@ -60,6 +63,7 @@ impl Material {
             Material::Plastic(n) => n.is_transparent(),
             Material::Glass(_) | Material::Dielectric(_) | Material::Mist(_) => true,
             Material::Anisotropic(a) => a.transmission.is_some(),
+            Material::Brtd(_, transparent) => *transparent,
             _ => false,
         }
     }
@@ -95,6 +99,7 @@ impl Material {
             Material::Emitter(e) => e.color,
             Material::Mixture(_) => Color::ZERO,
             Material::Function(f) => f.color,
+            Material::Brtd(b, _) => b.front_diffuse,
         }
     }
 }

@@ -7,6 +7,10 @@
 //! The shading variables m_brdf.c sets with `varset` (`NxP NyP NzP`, the perturbed
 //! normal in the function's frame, `RdotP`, and the pattern-modified colour `CrP CgP
 //! CbP`) reach the function file through channels after the data's.
+//!
+//! `BRTDfunc` (m_brdf.c `m_brdf`) has six expressions (the colours of its mirror ray and
+//! of its straight-through ray) and up to three functions of the light for its
+//! directional part, a `0` for none, a repeated name computed once.
 
 use std::sync::Arc;
 
@@ -42,6 +46,104 @@ pub struct ShadeState {
     pub color: Color,
 }
 
+/// A BRTDfunc's directional functions, red, green, blue: an expression index, `None`
+/// for `0`, or the same as an earlier channel.
+#[derive(Clone, Debug)]
+pub struct BrtdLookup {
+    pub directional: [Directional; 3],
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Directional {
+    Zero,
+    Call(usize),
+    SameAs(usize),
+}
+
+/// The shading variables and light arguments in the channels after the ray's.
+fn extra(
+    inverse: &radc_lang::transform::Transform,
+    shade: &ShadeState,
+    light: Option<(Vec3, f64)>,
+) -> [f64; 12] {
+    let turn = |v: Vec3| {
+        let m = &inverse.matrix;
+        let s = inverse.scale;
+        [0, 1, 2].map(|j| (v.x * m[0][j] + v.y * m[1][j] + v.z * m[2][j]) / s)
+    };
+    let (l, omega) = light.map_or(([0.0; 3], 0.0), |(d, o)| (turn(d), o));
+    let n = turn(shade.normal);
+    let c = shade.color;
+    [
+        l[0], l[1], l[2], omega, 0.0, n[0], n[1], n[2], shade.cos, c.x, c.y, c.z,
+    ]
+}
+
+impl BrtdLookup {
+    /// The directional part's colour for light from `dir` of solid angle `omega`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn directional(
+        &self,
+        functions: &Functions,
+        pattern: u32,
+        program: ProgramId,
+        ray: &RayView,
+        inverse: &radc_lang::transform::Transform,
+        args: &[f64],
+        shade: &ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<Color> {
+        let channels = Channels::new(ray, inverse);
+        let extra = extra(inverse, shade, Some((dir, omega)));
+        let mut input = RayInput {
+            channels: &channels,
+            args,
+            data: &extra,
+        };
+        let mut c = [0.0; 3];
+        for i in 0..3 {
+            c[i] = match self.directional[i] {
+                Directional::Zero => 0.0,
+                Directional::SameAs(j) => c[j],
+                Directional::Call(k) => {
+                    let mut v = [0.0];
+                    functions.eval(pattern, program, &[k], &mut input, &mut v)?;
+                    v[0]
+                }
+            };
+        }
+        Some(Color::new(c[0], c[1], c[2]))
+    }
+
+    /// The mirror ray's (`which` 0) or the straight ray's (1) colour: three of the six
+    /// expressions `exprs`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn coefficient(
+        functions: &Functions,
+        pattern: u32,
+        program: ProgramId,
+        exprs: &[usize],
+        ray: &RayView,
+        inverse: &radc_lang::transform::Transform,
+        args: &[f64],
+        shade: &ShadeState,
+        which: usize,
+    ) -> Option<Color> {
+        let channels = Channels::new(ray, inverse);
+        let extra = extra(inverse, shade, None);
+        let mut input = RayInput {
+            channels: &channels,
+            args,
+            data: &extra,
+        };
+        let mut v = [0.0; 3];
+        let three = exprs.get(3 * which..3 * which + 3)?;
+        functions.eval(pattern, program, three, &mut input, &mut v)?;
+        Some(Color::new(v[0], v[1], v[2]))
+    }
+}
+
 impl BrdfLookup {
     /// The function's value for light from `dir` (world) of solid angle `omega`;
     /// `None` on a compute error.
@@ -60,17 +162,7 @@ impl BrdfLookup {
         omega: f64,
     ) -> Option<f64> {
         let channels = Channels::new(ray, inverse);
-        let turn = |v: Vec3| {
-            let m = &inverse.matrix;
-            let s = inverse.scale;
-            [0, 1, 2].map(|j| (v.x * m[0][j] + v.y * m[1][j] + v.z * m[2][j]) / s)
-        };
-        let l = turn(dir);
-        let n = turn(shade.normal);
-        let c = shade.color;
-        let mut extra = [
-            l[0], l[1], l[2], omega, 0.0, n[0], n[1], n[2], shade.cos, c.x, c.y, c.z,
-        ];
+        let mut extra = extra(inverse, shade, Some((dir, omega)));
         if let Some(d) = &self.data {
             let mut pt = vec![0.0; coords.len()];
             let mut input = RayInput {

@@ -14,7 +14,7 @@ mod data;
 mod pattern;
 mod picture;
 
-pub use brdf::{BrdfLookup, SHADING_VARIABLES, ShadeState};
+pub use brdf::{BrdfLookup, BrtdLookup, Directional, SHADING_VARIABLES, ShadeState};
 pub use channels::{Channels, RayView};
 pub use data::{DataLookup, DataSource};
 pub use pattern::{MixSource, Pattern, PatternKind, bounded};

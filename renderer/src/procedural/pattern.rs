@@ -9,7 +9,7 @@
 
 use radc_lang::transform::Transform;
 
-use super::brdf::{BrdfLookup, ShadeState};
+use super::brdf::{BrdfLookup, BrtdLookup, ShadeState};
 use super::channels::{Channels, RayView};
 use super::data::DataLookup;
 use super::picture::PictureLookup;
@@ -43,6 +43,9 @@ pub enum PatternKind {
     /// A function or data material's function (its expressions are a data form's
     /// coordinate calls), evaluated per light sample by the material.
     Brdf(BrdfLookup),
+    /// A BRTDfunc's six coefficient expressions (the pattern's) and directional
+    /// functions, evaluated by the material.
+    Brtd(BrtdLookup),
 }
 
 /// Where a mixture's coefficient comes from.
@@ -109,8 +112,59 @@ impl Pattern {
                 source: MixSource::Picture(p),
                 ..
             } => p.values(functions, index, program, coords, channels, args),
-            PatternKind::Brdf(_) => None,
+            PatternKind::Brdf(_) | PatternKind::Brtd(_) => None,
         }
+    }
+
+    /// A BRTDfunc's directional colour for light from `dir` of solid angle `omega`.
+    pub fn brtd_directional(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
+        shade: &ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<Color> {
+        let PatternKind::Brtd(b) = &self.kind else {
+            return None;
+        };
+        b.directional(
+            functions,
+            index,
+            self.program,
+            ray,
+            &self.inverse,
+            &self.args,
+            shade,
+            dir,
+            omega,
+        )
+    }
+
+    /// A BRTDfunc's mirror (`which` 0) or straight-through (1) colour.
+    pub fn brtd_coefficient(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
+        shade: &ShadeState,
+        which: usize,
+    ) -> Option<Color> {
+        if !matches!(self.kind, PatternKind::Brtd(_)) {
+            return None;
+        }
+        BrtdLookup::coefficient(
+            functions,
+            index,
+            self.program,
+            &self.exprs,
+            ray,
+            &self.inverse,
+            &self.args,
+            shade,
+            which,
+        )
     }
 
     /// A function or data material's function for light from `dir` of solid angle
@@ -198,7 +252,7 @@ impl Pattern {
                     |a: f64, b: f64| f64::from((f(a, coef) as f32) + (f(b, 1.0 - coef) as f32));
                 Color::new(mix(fc.x, bc.x), mix(fc.y, bc.y), mix(fc.z, bc.z))
             }
-            PatternKind::Brdf(_) => return,
+            PatternKind::Brdf(_) | PatternKind::Brtd(_) => return,
             PatternKind::Texture | PatternKind::TextureData(_) => {
                 // The displacement turns with the texture (`multv3` by `fxp`) and is
                 // divided by its scale (`VSUM(pert, pert, disp, 1/sca)`), so only the
