@@ -952,29 +952,9 @@ impl Compiler<'_> {
                 return None;
             }
         };
-        let words: Vec<(&str, radc_lang::Span)> = strings[coords_end..]
-            .iter()
-            .map(|w| (w.as_str(), radc_lang::Span::default()))
-            .collect();
-        let Ok(mut inverse) = radc_lang::transform::Transform::parse_inverse(&words) else {
-            self.unsupported(id, "bad transform");
-            return None;
-        };
-        inverse.scale = inverse.scale.abs();
-        let pattern = self.functions.patterns.len() as u32;
-        let who = self
-            .ir
-            .get(id)
-            .map_or_else(String::new, |p| format!("{} '{}'", p.schema.name, p.name));
-        self.functions.patterns.push(Pattern {
-            who,
-            kind: PatternKind::Brdf(crate::procedural::BrdfLookup { data, value }),
-            program,
-            exprs: coords,
-            args: reals.to_vec(),
-            inverse,
-            forward: None,
-        });
+        let inverse = self.function_frame(id, &strings[coords_end..])?;
+        let brdf = PatternKind::Brdf(crate::procedural::BrdfLookup { data, value });
+        let pattern = self.material_pattern(id, brdf, program, coords, reals, inverse);
         let real = |i: usize| reals.get(i).copied().unwrap_or(0.0);
         Some(FunctionMaterial {
             kind,
@@ -985,6 +965,51 @@ impl Compiler<'_> {
             pattern,
             texture: Vec3::ZERO,
         })
+    }
+
+    /// The frame a material's functions see (func.c `getfunc`'s `bxp`): the inverse
+    /// of the transform in `words`, its scale made positive; `None` after refusing.
+    fn function_frame(
+        &mut self,
+        id: PrimId,
+        words: &[String],
+    ) -> Option<radc_lang::transform::Transform> {
+        let words: Vec<(&str, radc_lang::Span)> = words
+            .iter()
+            .map(|w| (w.as_str(), radc_lang::Span::default()))
+            .collect();
+        let Ok(mut inverse) = radc_lang::transform::Transform::parse_inverse(&words) else {
+            self.unsupported(id, "bad transform");
+            return None;
+        };
+        inverse.scale = inverse.scale.abs();
+        Some(inverse)
+    }
+
+    /// Adds the pattern a function material evaluates; its index.
+    fn material_pattern(
+        &mut self,
+        id: PrimId,
+        kind: PatternKind,
+        program: ProgramId,
+        exprs: Vec<usize>,
+        reals: &[f64],
+        inverse: radc_lang::transform::Transform,
+    ) -> u32 {
+        let who = self
+            .ir
+            .get(id)
+            .map_or_else(String::new, |p| format!("{} '{}'", p.schema.name, p.name));
+        self.functions.patterns.push(Pattern {
+            who,
+            kind,
+            program,
+            exprs,
+            args: reals.to_vec(),
+            inverse,
+            forward: None,
+        });
+        self.functions.patterns.len() as u32 - 1
     }
 
     /// A BRTDfunc: its reals, and its expressions and directional functions compiled as
@@ -1031,29 +1056,9 @@ impl Compiler<'_> {
                 }
             };
         }
-        let words: Vec<(&str, radc_lang::Span)> = strings[10..]
-            .iter()
-            .map(|w| (w.as_str(), radc_lang::Span::default()))
-            .collect();
-        let Ok(mut inverse) = radc_lang::transform::Transform::parse_inverse(&words) else {
-            self.unsupported(id, "bad transform");
-            return None;
-        };
-        inverse.scale = inverse.scale.abs();
-        let pattern = self.functions.patterns.len() as u32;
-        let who = self
-            .ir
-            .get(id)
-            .map_or_else(String::new, |p| format!("{} '{}'", p.schema.name, p.name));
-        self.functions.patterns.push(Pattern {
-            who,
-            kind: PatternKind::Brtd(crate::procedural::BrtdLookup { directional }),
-            program,
-            exprs,
-            args: reals.to_vec(),
-            inverse,
-            forward: None,
-        });
+        let inverse = self.function_frame(id, &strings[10..])?;
+        let kind = PatternKind::Brtd(crate::procedural::BrtdLookup { directional });
+        let pattern = self.material_pattern(id, kind, program, exprs, reals, inverse);
         let rgb = |i: usize| Vec3::new(reals[i], reals[i + 1], reals[i + 2]);
         Some(Brtd {
             front_diffuse: rgb(0),

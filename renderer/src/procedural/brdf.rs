@@ -211,16 +211,7 @@ impl Functions {
         name: &str,
         channels: &[u32],
     ) -> Result<usize, String> {
-        if !super::data::is_function_name(name) {
-            return Err(format!("'{name}' is not a function name"));
-        }
-        let module = &self
-            .programs
-            .get(p.0 as usize)
-            .ok_or_else(|| "no such program".to_string())?
-            .module;
-        let arity = super::data::arity(module, name)
-            .ok_or_else(|| format!("'{name}' is not a function of fixed arity radc evaluates"))?;
+        let arity = self.callable_arity(p, name)?;
         if arity > channels.len() {
             return Err(format!(
                 "'{name}' takes {arity} arguments; the material passes {}",

@@ -100,6 +100,21 @@ pub(super) fn apply_functions(
 }
 
 impl Functions {
+    /// The parameter count of function `name` as program `p` would call it, or why it
+    /// cannot be called from a pattern or material.
+    pub(super) fn callable_arity(&self, p: ProgramId, name: &str) -> Result<usize, String> {
+        if !is_function_name(name) {
+            return Err(format!("'{name}' is not a function name"));
+        }
+        let module = &self
+            .programs
+            .get(p.0 as usize)
+            .ok_or_else(|| "no such program".to_string())?
+            .module;
+        arity(module, name)
+            .ok_or_else(|| format!("'{name}' is not a function of fixed arity radc evaluates"))
+    }
+
     /// Adds the call of function `name` on a data value to program `p`: on value
     /// `channel` alone, or, where `name` takes three or more arguments and `triple` is
     /// set, on all three (p_data.c: `fundefined(name) < 3` decides). Returns the
@@ -111,17 +126,7 @@ impl Functions {
         channel: u32,
         triple: bool,
     ) -> Result<usize, String> {
-        let plain = is_function_name(name);
-        if !plain {
-            return Err(format!("'{name}' is not a function name"));
-        }
-        let module = &self
-            .programs
-            .get(p.0 as usize)
-            .ok_or_else(|| "no such program".to_string())?
-            .module;
-        let arity = arity(module, name)
-            .ok_or_else(|| format!("'{name}' is not a function of fixed arity radc evaluates"))?;
+        let arity = self.callable_arity(p, name)?;
         let text = if triple && arity >= 3 {
             format!(
                 "{name}(${DATA_CHANNEL},${},${})",
