@@ -81,6 +81,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "mixtures-",
             "functions-",
             "brtd-",
+            "aniso_functions-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

@@ -1012,6 +1012,45 @@ impl Compiler<'_> {
         self.functions.patterns.len() as u32 - 1
     }
 
+    /// An anisotropic material's orientation expressions (its first three strings, in
+    /// the function file that follows) as a pattern the material evaluates per hit.
+    fn orientation_pattern(
+        &mut self,
+        id: PrimId,
+        strings: &[String],
+        reals: &[f64],
+        transform: radc_lang::transform::Transform,
+    ) -> Option<u32> {
+        if strings.len() < 4 {
+            self.unsupported(id, "bad # arguments");
+            return None;
+        }
+        let file = &strings[3];
+        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
+            self.unsupported(id, "its function file could not be loaded");
+            return None;
+        };
+        let program = self.functions.program(file, module);
+        let mut exprs = Vec::new();
+        for e in &strings[..3] {
+            match self.functions.add_expression(program, e) {
+                Ok(k) => exprs.push(k),
+                Err(why) => {
+                    self.refuse_with(id, why);
+                    return None;
+                }
+            }
+        }
+        let inverse = self.function_frame(id, &strings[4..])?;
+        let pattern =
+            self.material_pattern(id, PatternKind::Orientation, program, exprs, reals, inverse);
+        if let Some(p) = self.functions.patterns.get_mut(pattern as usize) {
+            p.forward =
+                (transform != radc_lang::transform::Transform::IDENTITY).then_some(transform);
+        }
+        Some(pattern)
+    }
+
     /// A BRTDfunc: its reals, and its expressions and directional functions compiled as
     /// a pattern the material evaluates.
     fn brtd_material(&mut self, id: PrimId, strings: &[String], reals: &[f64]) -> Option<Brtd> {
@@ -1392,17 +1431,16 @@ impl Compiler<'_> {
                         .and_then(|w| w.parse::<f64>().ok())
                         .filter(|x| x.is_finite())
                 };
-                let (Some(ux), Some(uy), Some(uz)) = (number(0), number(1), number(2)) else {
-                    self.unsupported(
-                        kind,
-                        "orientation expressions are not evaluated yet (numbers are)",
-                    );
-                    return None;
+                let numeric = match (number(0), number(1), number(2)) {
+                    (Some(ux), Some(uy), Some(uz)) if strings.len() <= 4 => {
+                        Some(Vec3::new(ux, uy, uz))
+                    }
+                    _ => None,
                 };
-                if strings.len() > 4 {
-                    self.unsupported(kind, "transforms of the orientation are not applied yet");
-                    return None;
-                }
+                let orientation_pattern = match numeric {
+                    Some(_) => None,
+                    None => Some(self.orientation_pattern(kind, strings, reals, p.transform)?),
+                };
                 let real = |i: usize| reals.get(i).copied().unwrap_or(0.0);
                 if real(4) <= FTINY || real(5) <= FTINY {
                     self.unsupported(kind, "roughness too small (Radiance refuses it)");
@@ -1413,7 +1451,8 @@ impl Compiler<'_> {
                     spec: real(3),
                     u_rough: real(4),
                     v_rough: real(5),
-                    orientation: Vec3::new(ux, uy, uz),
+                    orientation: numeric.unwrap_or(Vec3::ZERO),
+                    orientation_pattern,
                     metal: p.schema.name == "metal2",
                     transmission: (p.schema.name == "trans2").then(|| (real(6), real(7))),
                 })

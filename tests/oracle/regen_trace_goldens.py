@@ -327,6 +327,10 @@ def cases():
     case("brtd-view", "brtd.rad", ["-av", ".05", ".05", ".05"], br_view, "-ovL")
     case("brtd-irradiance", "brtd.rad", ["-I"],
          irradiance_points(rng, 40, [-4.5, -4.5, 0], [4.5, 2.5, 0], [(0, 0, 1)]))
+    an_view = box_rays(rng, 60, [-3, -3, 1], [3, 3, 3], toward=[0, 0, 0], spread=2)
+    an_view += box_rays(rng, 20, [-1, -2, .5], [1, 0, 1.5], toward=[0, 1, 1], spread=.8)
+    an_view += box_rays(rng, 20, [-1, -3, .3], [0, -2.5, 1], toward=[-1.5, -1.5, .5], spread=.4)
+    case("aniso_functions-view", "aniso_functions.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
     return out
 
 

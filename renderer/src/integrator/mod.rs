@@ -500,6 +500,13 @@ impl ShadingContext for Tracer<'_> {
         }
     }
 
+    fn orientation(&self, pattern: u32, view: &crate::procedural::RayView) -> Option<Vec3> {
+        let functions = self.scene.functions.as_deref()?;
+        let p = functions.patterns.get(pattern as usize)?;
+        p.vector(functions, pattern, view)
+            .map(|v| Vec3::new(v[0], v[1], v[2]))
+    }
+
     fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64> {
         let functions = self.scene.functions.as_deref()?;
         let p = functions.patterns.get(pattern as usize)?;

@@ -1,6 +1,8 @@
 //! `plastic2`, `metal2` and `trans2` (aniso.c): the normal.c model with an elliptical
 //! Gaussian highlight, rougher along one surface direction than across it. The
-//! direction comes from three expressions; radc takes them when they are numbers.
+//! direction comes from three expressions (`getacoords`), evaluated per hit through
+//! the scene's functions when they are more than numbers, and turned by the material's
+//! transform.
 
 use super::ShadingContext;
 use crate::integrator::{RayKind, RayState};
@@ -13,8 +15,11 @@ pub struct Anisotropic {
     pub spec: f64,
     pub u_rough: f64,
     pub v_rough: f64,
-    /// The direction of `u_rough` before projection onto the surface.
+    /// The direction of `u_rough` before projection onto the surface, when its
+    /// expressions are numbers and there is no transform.
     pub orientation: Vec3,
+    /// Otherwise the pattern that evaluates them (`procedural::PatternKind::Orientation`).
+    pub orientation_pattern: Option<u32>,
     pub metal: bool,
     /// `trans2`: transmitted fraction and its specular part.
     pub transmission: Option<(f64, f64)>,
@@ -50,7 +55,12 @@ impl Anisotropic {
             }
             r.flip();
         }
-        let s = self.setup(t, r);
+        let orientation = match self.orientation_pattern {
+            // A compute error gives a zero vector (then the frame is made up).
+            Some(p) => t.orientation(p, &r.view()).unwrap_or(Vec3::ZERO),
+            None => self.orientation,
+        };
+        let s = self.setup(t, r, orientation);
         let threshold = t.options().specular_threshold + FTINY;
         // Highlights above -st are sampled at random by Radiance; radc does not sample
         // them (its result then lacks that part).
@@ -75,7 +85,7 @@ impl Anisotropic {
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
 
-    fn setup(&self, t: &impl ShadingContext, r: &RayState) -> Shading {
+    fn setup(&self, t: &impl ShadingContext, r: &RayState, orientation: Vec3) -> Shading {
         let specular_reflection = self.spec;
         let reflects = specular_reflection > FTINY;
         let specular = if self.metal {
@@ -93,7 +103,7 @@ impl Anisotropic {
         let normal = r.normal;
         let (mut u_alpha, mut v_alpha) = (self.u_rough, self.v_rough);
         // The frame: v across the projected orientation, u along it (`getacoords`).
-        let mut v = normal.cross(self.orientation);
+        let mut v = normal.cross(orientation);
         let u = if normalize(&mut v) == 0.0 {
             let u = perpendicular(normal).unwrap_or(Vec3::X);
             v = normal.cross(u);

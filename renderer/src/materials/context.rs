@@ -63,6 +63,10 @@ pub trait ShadingContext {
         part: crate::materials::brtd::BrtdPart,
     ) -> Option<Color>;
 
+    /// An anisotropic material's orientation vector from its expressions (pattern
+    /// `pattern`), turned by its transform; `None` on a compute error.
+    fn orientation(&self, pattern: u32, view: &crate::procedural::RayView) -> Option<Vec3>;
+
     /// The coefficient of the mixture whose pattern is `pattern` for `r`'s hit, before
     /// bounding; `None` on a compute error (warned of once).
     fn mixture_coefficient(&self, pattern: u32, r: &RayState) -> Option<f64>;
@@ -108,6 +112,8 @@ pub mod scripted {
         pub brdf_calls: RefCell<Vec<(Vec3, Vec3, f64)>>,
         /// What `brtd` answers for every part.
         pub brtd_value: Option<Color>,
+        /// What `orientation` answers.
+        pub orientation: Option<Vec3>,
     }
 
     impl Default for Scripted {
@@ -126,6 +132,7 @@ pub mod scripted {
                 brdf_value: None,
                 brdf_calls: RefCell::new(Vec::new()),
                 brtd_value: None,
+                orientation: None,
             }
         }
     }
@@ -199,6 +206,9 @@ pub mod scripted {
             _: crate::materials::brtd::BrtdPart,
         ) -> Option<Color> {
             self.brtd_value
+        }
+        fn orientation(&self, _: u32, _: &crate::procedural::RayView) -> Option<Vec3> {
+            self.orientation
         }
         fn mixture_coefficient(&self, _: u32, _: &RayState) -> Option<f64> {
             self.coefficient

@@ -43,6 +43,9 @@ pub enum PatternKind {
     /// A function or data material's function (its expressions are a data form's
     /// coordinate calls), evaluated per light sample by the material.
     Brdf(BrdfLookup),
+    /// An anisotropic material's orientation: three expressions, turned by the
+    /// transform (aniso.c `getacoords`: `multv3` by `fxp`, no scale division).
+    Orientation,
     /// A BRTDfunc's six coefficient expressions (the pattern's) and directional
     /// functions, evaluated by the material.
     Brtd(BrtdLookup),
@@ -85,6 +88,7 @@ impl Pattern {
             PatternKind::Bright
             | PatternKind::Color
             | PatternKind::Texture
+            | PatternKind::Orientation
             | PatternKind::Mixture {
                 source: MixSource::Function,
                 ..
@@ -114,6 +118,16 @@ impl Pattern {
             } => p.values(functions, index, program, coords, channels, args),
             PatternKind::Brdf(_) | PatternKind::Brtd(_) => None,
         }
+    }
+
+    /// The three values of an orientation pattern for the ray, turned by its transform.
+    pub fn vector(&self, functions: &Functions, index: u32, ray: &RayView) -> Option<[f64; 3]> {
+        let channels = Channels::new(ray, &self.inverse);
+        let v = self.values(functions, index, &channels)?;
+        Some(match &self.forward {
+            Some(xf) => xf.vector(v),
+            None => v,
+        })
     }
 
     /// A BRTDfunc's directional colour for light from `dir` of solid angle `omega`.
@@ -252,7 +266,7 @@ impl Pattern {
                     |a: f64, b: f64| f64::from((f(a, coef) as f32) + (f(b, 1.0 - coef) as f32));
                 Color::new(mix(fc.x, bc.x), mix(fc.y, bc.y), mix(fc.z, bc.z))
             }
-            PatternKind::Brdf(_) | PatternKind::Brtd(_) => return,
+            PatternKind::Brdf(_) | PatternKind::Brtd(_) | PatternKind::Orientation => return,
             PatternKind::Texture | PatternKind::TextureData(_) => {
                 // The displacement turns with the texture (`multv3` by `fxp`) and is
                 // divided by its scale (`VSUM(pert, pert, disp, 1/sca)`), so only the
