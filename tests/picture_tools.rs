@@ -99,6 +99,9 @@ fn unsupported_options_and_damage_are_clear_errors() {
         &["getinfo", "-r", "VIEW"],
         &["ra_rgbe", "wide.hdr", "!cat"],
         &["ra_ppm", "-s", "1000", "wide.hdr"],
+        &["pfilt", "-n", "8", "wide.hdr"],
+        &["pfilt", "-t", "halogen", "wide.hdr"],
+        &["pfilt", "-m", ".25", "wide.hdr"],
     ] {
         let out = radc(args);
         assert_eq!(out.status.code(), Some(1), "{args:?}");

@@ -128,6 +128,11 @@ const COMMANDS: &[Command] = &[
         run: picture_tools::getinfo::run,
     },
     Command {
+        name: "pfilt",
+        summary: "resample a picture with a box or Gaussian filter and an exposure, as Radiance's pfilt",
+        run: picture_tools::pfilt::run,
+    },
+    Command {
         name: "pvalue",
         summary: "convert picture pixels to numbers and back, as Radiance's pvalue",
         run: picture_tools::pvalue::run,

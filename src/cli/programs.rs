@@ -59,6 +59,7 @@ pub(super) const PROGRAMS: &[Program] = &[
         runs_commands: true,
     },
     program("getinfo", "getinfo"),
+    program("pfilt", "pfilt"),
     program("pvalue", "pvalue"),
     program("pflip", "pflip"),
     program("protate", "protate"),

@@ -1,5 +1,5 @@
-"""Goldens for the picture commands (`radc getinfo pvalue pflip protate ra_ppm ra_rgbe
-ra_xyze`) from the real programs, and the pictures they run on.
+"""Goldens for the picture commands (`radc getinfo pvalue pfilt pflip protate ra_ppm
+ra_rgbe ra_xyze`) from the real programs, and the pictures they run on.
 
 Pictures (tests/data/picture/inputs/): made by rpict at widths below and above the
 run-length threshold (17), by `radc render`, turned and flipped by protate and pflip
@@ -22,6 +22,7 @@ colorpict.json: what rtrace sees of some of the pictures used as `colorpict` pat
 outside each picture; picture/tests/colorpict.rs samples them with radc_picture.
 
     python tests/oracle/regen_picture_goldens.py           # rewrite inputs and goldens
+    python tests/oracle/regen_picture_goldens.py --keep-inputs  # rewrite the goldens only
     python tests/oracle/regen_picture_goldens.py --check   # rerun the programs on the
                                                            # kept inputs; fail on change
 """
@@ -160,7 +161,22 @@ def cases():
           ["pvalue", "-r", "-db", "radc.byte"], ["pvalue", "-r", "-h", "-H", "-dd", "-b", "-y", "9", "+x", "12",
                                                  "small-bright.double"],
           ["pvalue", "-r", "-u", "wide.txt"], ["pvalue", "-r", "-e", "-1", "wide.txt"]]
-    return [(x, None) for x in c] + STDIN_CASES
+    return [(x, None) for x in c] + STDIN_CASES + pfilt_cases()
+
+
+def pfilt_cases():
+    """pfilt's cases, after the others so adding them kept the earlier numbering."""
+    c = []
+    for p in PICTURES:
+        c += [["pfilt", "-x", "/2", "-y", "/2", p], ["pfilt", "-1", p], ["pfilt", "-x", "10", "-y", "8", "-r", ".6", p],
+              ["pfilt", "-1", "-e", "+1", "-x", "/3", "-y", "/3", p], ["pfilt", "-e", "2", "-er", "1.5", "-h", "1", "-a", p],
+              ["pfilt", "-c", "-p", "1", "-x", "20", "-y", "30", p],
+              ["pfilt", "-1", "-r", "1", "-x", "128", "-y", "128", "-pa", "1", p],
+              ["pfilt", "-1", "-x", "64", "-y", "64", "-r", "1", p]]
+    for d in DAMAGED:
+        c += [["pfilt", d], ["pfilt", "-1", d]]
+    stdin = [(["pfilt", "-x", "/2", "-y", "/2"], "wide.hdr"), (["pfilt", "-1", "-r", ".6"], "small.hdr")]
+    return [(x, None) for x in c] + stdin
 
 
 # Cases reading standard input: (arguments, the input file given on standard input).
@@ -239,7 +255,9 @@ def colorpict_values():
 
 def main():
     check = "--check" in sys.argv
-    if not check:
+    # --keep-inputs: new cases on the kept pictures (remaking them changes their
+    # capture dates, so every golden would churn).
+    if not check and "--keep-inputs" not in sys.argv:
         make_inputs()
     expected = os.path.join(DATA, "expected")
     listed = []

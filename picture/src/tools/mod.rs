@@ -1,10 +1,11 @@
-//! The engines of Radiance's picture programs (getinfo, pvalue, pflip, protate,
-//! ra_ppm, ra_rgbe, ra_xyze): each takes its options and the input's bytes and gives the
+//! The engines of Radiance's picture programs (getinfo, pvalue, pfilt, pflip,
+//! protate, ra_ppm, ra_rgbe, ra_xyze): each takes its options and the input's bytes and gives the
 //! output's bytes, or a message, as the C program would write them. Reading files,
 //! parsing arguments, writing and exit codes are the caller's (the `radc` binary's
 //! `cli::picture_tools`), so these never touch the file system or standard streams.
 
 pub mod getinfo;
+pub mod pfilt;
 pub mod pflip;
 pub mod protate;
 pub mod pvalue;

@@ -4,6 +4,7 @@
 //! the file and, for damaged pictures, the byte offset.
 
 pub mod getinfo;
+pub mod pfilt;
 pub mod pflip;
 pub mod protate;
 pub mod pvalue;
