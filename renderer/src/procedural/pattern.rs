@@ -236,7 +236,9 @@ impl Pattern {
         let f = |c: f64, by: f64| f64::from((c * by) as f32);
         *pcol = match &self.kind {
             PatternKind::Bright | PatternKind::BrightData(_) => {
-                Color::new(f(pcol.x, v[0]), f(pcol.y, v[0]), f(pcol.z, v[0]))
+                // `scalescolor` makes its factor single precision first.
+                let b = f64::from(v[0] as f32);
+                Color::new(f(pcol.x, b), f(pcol.y, b), f(pcol.z, b))
             }
             PatternKind::Color | PatternKind::ColorData(_) | PatternKind::ColorPict(_) => {
                 Color::new(
@@ -261,9 +263,10 @@ impl Pattern {
                 let (fc, fp) = side(fore, coef > FTINY);
                 let (bc, bp) = side(back, coef < 1.0 - FTINY);
                 *pert = fp * coef + bp * (1.0 - coef);
-                // scalescolor on each side, then saddscolor: floats throughout.
-                let mix =
-                    |a: f64, b: f64| f64::from((f(a, coef) as f32) + (f(b, 1.0 - coef) as f32));
+                // scalescolor on each side (its factor made single precision), then
+                // saddscolor: floats throughout.
+                let (cf, cb) = (f64::from(coef as f32), f64::from((1.0 - coef) as f32));
+                let mix = |a: f64, b: f64| f64::from((f(a, cf) as f32) + (f(b, cb) as f32));
                 Color::new(mix(fc.x, bc.x), mix(fc.y, bc.y), mix(fc.z, bc.z))
             }
             PatternKind::Brdf(_) | PatternKind::Brtd(_) | PatternKind::Orientation => return,
