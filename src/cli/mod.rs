@@ -14,6 +14,7 @@ mod fmt;
 // module for what it does.
 #[path = "gen.rs"]
 mod generate;
+mod help;
 mod load;
 mod lsp;
 mod options;
@@ -209,6 +210,10 @@ pub fn dispatch(args: &[String]) -> ExitCode {
         n => n,
     };
     match COMMANDS.iter().find(|c| c.name == name) {
+        // `--help` on every command: its options, exit 0.
+        Some(c) if args.get(1).is_some_and(|a| a == "--help") && c.name != "help" => {
+            help::command(c.name, c.summary)
+        }
         Some(c) => (c.run)(&args[1..]),
         None => {
             eprintln!("radc: unknown command '{name}'; run 'radc help' for the list");
@@ -217,7 +222,17 @@ pub fn dispatch(args: &[String]) -> ExitCode {
     }
 }
 
-fn help(_: &[String]) -> ExitCode {
+/// `radc help` lists the commands; `radc help COMMAND` is `radc COMMAND --help`.
+fn help(args: &[String]) -> ExitCode {
+    if let Some(name) = args.first() {
+        return match COMMANDS.iter().find(|c| c.name == name) {
+            Some(c) => help::command(c.name, c.summary),
+            None => {
+                eprintln!("radc help: unknown command '{name}'; run 'radc help' for the list");
+                ExitCode::from(USAGE_ERROR)
+            }
+        };
+    }
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
