@@ -17,6 +17,7 @@ const TEXTS: &[(&str, &str)] = &[
     ("pfilt", include_str!("help/pfilt.txt")),
     ("vwrays", include_str!("help/vwrays.txt")),
     ("cnt", include_str!("help/cnt.txt")),
+    ("total", include_str!("help/total.txt")),
     ("getinfo", include_str!("help/getinfo.txt")),
     ("pvalue", include_str!("help/pvalue.txt")),
     ("pflip", include_str!("help/pflip.txt")),

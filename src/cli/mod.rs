@@ -22,6 +22,7 @@ mod picture_tools;
 mod programs;
 mod render;
 mod report;
+mod total;
 mod trace;
 mod vwrays;
 
@@ -117,6 +118,11 @@ const COMMANDS: &[Command] = &[
         name: "cnt",
         summary: "count through every combination of counters, as Radiance's cnt",
         run: cnt::run,
+    },
+    Command {
+        name: "total",
+        summary: "reduce columns of records to sums, means, products or extremes, as Radiance's total",
+        run: total::run,
     },
     Command {
         name: "vwrays",

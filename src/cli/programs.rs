@@ -60,6 +60,7 @@ pub(super) const PROGRAMS: &[Program] = &[
     },
     program("getinfo", "getinfo"),
     program("pfilt", "pfilt"),
+    program("total", "total"),
     program("pvalue", "pvalue"),
     program("pflip", "pflip"),
     program("protate", "protate"),

@@ -9,6 +9,7 @@
 pub mod format;
 pub mod input_format;
 mod parallel;
+pub mod total;
 
 use std::collections::HashMap;
 use std::io::{BufRead, Write};

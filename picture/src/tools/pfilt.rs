@@ -253,10 +253,11 @@ pub fn filter(o: &Options, run: &Run, data: &[u8], what: &str) -> Result<Vec<u8>
     };
     out.extend_from_slice(out_res.line().as_bytes());
     let at = |x: i64, y: i64| pixels[(y * xres + x) as usize];
-    let mut scan = Vec::with_capacity(ncols as usize);
-    for r in 0..nrows {
+    // One output scanline, encoded; rows are independent, so blocks of them are
+    // filtered on every core and joined in order (the bytes never depend on it).
+    let row = |r: i64, out: &mut Vec<u8>| {
+        let mut scan = Vec::with_capacity(ncols as usize);
         let ycent = ((r as f64 + 0.5) * yres as f64 / nrows as f64) as i64;
-        scan.clear();
         for c in 0..ncols {
             let xcent = ((c as f64 + 0.5) * xres as f64 / ncols as f64) as i64;
             let v = match &gauss {
@@ -349,7 +350,28 @@ pub fn filter(o: &Options, run: &Run, data: &[u8], what: &str) -> Result<Vec<u8>
             };
             scan.push(encode(f64::from(v[0]), f64::from(v[1]), f64::from(v[2])));
         }
-        scanline::write(&scan, &mut out);
+        scanline::write(&scan, out);
+    };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as i64;
+    let block = (nrows + threads - 1) / threads;
+    let parts: Option<Vec<Vec<u8>>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                let row = &row;
+                s.spawn(move || {
+                    let mut part = Vec::new();
+                    for r in t * block..((t + 1) * block).min(nrows) {
+                        row(r, &mut part);
+                    }
+                    part
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().ok()).collect()
+    });
+    let parts = parts.ok_or("a filtering thread failed")?;
+    for part in parts {
+        out.extend_from_slice(&part);
     }
     Ok(out)
 }
