@@ -18,6 +18,7 @@ const TEXTS: &[(&str, &str)] = &[
     ("vwrays", include_str!("help/vwrays.txt")),
     ("cnt", include_str!("help/cnt.txt")),
     ("total", include_str!("help/total.txt")),
+    ("rlam", include_str!("help/rlam.txt")),
     ("getinfo", include_str!("help/getinfo.txt")),
     ("pvalue", include_str!("help/pvalue.txt")),
     ("pflip", include_str!("help/pflip.txt")),

@@ -22,6 +22,7 @@ mod picture_tools;
 mod programs;
 mod render;
 mod report;
+mod rlam;
 mod total;
 mod trace;
 mod vwrays;
@@ -123,6 +124,11 @@ const COMMANDS: &[Command] = &[
         name: "total",
         summary: "reduce columns of records to sums, means, products or extremes, as Radiance's total",
         run: total::run,
+    },
+    Command {
+        name: "rlam",
+        summary: "join the records of several inputs side by side, as Radiance's rlam",
+        run: rlam::run,
     },
     Command {
         name: "vwrays",

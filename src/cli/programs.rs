@@ -61,6 +61,11 @@ pub(super) const PROGRAMS: &[Program] = &[
     program("getinfo", "getinfo"),
     program("pfilt", "pfilt"),
     program("total", "total"),
+    Program {
+        name: "rlam",
+        command: "rlam",
+        runs_commands: true,
+    },
     program("pvalue", "pvalue"),
     program("pflip", "pflip"),
     program("protate", "protate"),

@@ -8,6 +8,7 @@
 
 pub mod format;
 pub mod input_format;
+pub mod laminate;
 mod parallel;
 pub mod total;
 
