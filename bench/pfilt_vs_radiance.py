@@ -73,12 +73,15 @@ def main():
         path = os.path.join(work, "in.hdr")
         picture(path, a.width, a.height)
         print(f"picture: {a.width} x {a.height}   runs: {a.runs} (best of)   load average: {os.getloadavg()[0]:.1f}")
-        print(f"{'options':40} {'pfilt s':>8} {'radc s':>8} {'ratio':>7}  output")
+        one = ["taskset", "-c", "0"] if shutil.which("taskset") else []
+        print(f"{'options':40} {'pfilt s':>8} {'radc 1 core':>12} {'radc all':>9} {'ratios':>14}  output")
         for opts in CONFIGS:
             tp, op = best([pfilt] + opts, path, a.runs, env)
+            t1, o1 = best(one + [a.radc, "pfilt"] + opts, path, a.runs, env)
             tr, orc = best([a.radc, "pfilt"] + opts, path, a.runs, env)
-            same = orc.replace(b"\nradc pfilt", b"\npfilt", 1) == op
-            print(f"{' '.join(opts):40} {tp:8.3f} {tr:8.3f} {tp / tr:6.2f}x  {'identical' if same else 'DIFFERS'}")
+            same = all(o.replace(b"\nradc pfilt", b"\npfilt", 1) == op for o in (o1, orc))
+            print(f"{' '.join(opts):40} {tp:8.3f} {t1:12.3f} {tr:9.3f} {tp / t1:6.2f}x {tp / tr:6.2f}x  "
+                  f"{'identical' if same else 'DIFFERS'}")
     finally:
         shutil.rmtree(work)
 
