@@ -19,6 +19,7 @@ const TEXTS: &[(&str, &str)] = &[
     ("cnt", include_str!("help/cnt.txt")),
     ("total", include_str!("help/total.txt")),
     ("rlam", include_str!("help/rlam.txt")),
+    ("rsplit", include_str!("help/rsplit.txt")),
     ("getinfo", include_str!("help/getinfo.txt")),
     ("pvalue", include_str!("help/pvalue.txt")),
     ("pflip", include_str!("help/pflip.txt")),

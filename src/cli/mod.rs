@@ -19,10 +19,11 @@ mod load;
 mod lsp;
 mod options;
 mod picture_tools;
-mod programs;
+pub(crate) mod programs;
 mod render;
 mod report;
 mod rlam;
+mod rsplit;
 mod total;
 mod trace;
 mod vwrays;
@@ -129,6 +130,11 @@ const COMMANDS: &[Command] = &[
         name: "rlam",
         summary: "join the records of several inputs side by side, as Radiance's rlam",
         run: rlam::run,
+    },
+    Command {
+        name: "rsplit",
+        summary: "split the fields of standard input among several outputs, as Radiance's rsplit",
+        run: rsplit::run,
     },
     Command {
         name: "vwrays",

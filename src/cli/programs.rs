@@ -66,6 +66,11 @@ pub(super) const PROGRAMS: &[Program] = &[
         command: "rlam",
         runs_commands: true,
     },
+    Program {
+        name: "rsplit",
+        command: "rsplit",
+        runs_commands: true,
+    },
     program("pvalue", "pvalue"),
     program("pflip", "pflip"),
     program("protate", "protate"),
@@ -82,7 +87,21 @@ pub(super) fn called_as(argv0: &str) -> Option<&'static Program> {
 }
 
 /// Runs `program` with the arguments Radiance's program would get.
+/// The Radiance program radc was called as, once known (see [`printed_name`]).
+static CALLED_AS: std::sync::OnceLock<&'static str> = std::sync::OnceLock::new();
+
+/// The name a command gives itself where Radiance's program writes its `argv[0]` (a
+/// header's command line, the padding after it): the program's name when radc was called
+/// by it, `radc COMMAND` otherwise.
+pub fn printed_name(command: &str) -> String {
+    match CALLED_AS.get() {
+        Some(name) => (*name).to_string(),
+        None => format!("radc {command}"),
+    }
+}
+
 pub(super) fn run(program: &Program, args: &[String]) -> ExitCode {
+    let _ = CALLED_AS.set(program.name);
     let mut full = Vec::with_capacity(args.len() + 2);
     full.push(program.command.to_string());
     if program.runs_commands {

@@ -1,11 +1,11 @@
-"""Goldens for radc's record tools (`total`, `rlam`): what Radiance's programs print
+"""Goldens for radc's record tools (`total`, `rlam`, `rsplit`): what Radiance's programs print
 (and their exit status) for each case, on the inputs in tests/data/record_tools/, some
 with standard input. tests/record_tools.rs runs radc on the same cases.
 
     python tests/oracle/regen_record_tools_goldens.py           # rewrite the goldens
     python tests/oracle/regen_record_tools_goldens.py --check   # fail if any would change
 """
-import json, os, subprocess, sys
+import json, os, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DATA = os.path.join(ROOT, "tests", "data", "record_tools")
@@ -26,6 +26,18 @@ RLAM = [
     ["-ib4", "letters.txt", "-ia", "digits.txt"], ["no-newline.txt", "letters.txt"], ["-x", "letters.txt"],
     [], ["missing.txt"], ["-", "letters.txt"], ["-iq", "letters.txt"],
 ]
+# rsplit: (standard input, arguments); it writes files, kept as expected/<n>.<name>.
+RSPLIT = [
+    ("fields.txt", ["-t ", "a", "-oa2", "b"]), ("fields.txt", ["-t ", "a", ".", "c"]),
+    ("fields.txt", ["-t ", "-oh", "a", "-oa2", "b"]),
+    ("with-header.txt", ["-ih", "-iH", "-t ", "-oh", "-oH", "a", "-oa2", "b"]),
+    ("fields.txt", ["-t ", "-"]), ("fields.txt", ["-t ", "-", "-oa2", "-"]),
+    ("fields.txt", ["-on", "2", "-t ", "a", "b", "c"]), ("fields.txt", ["-on", "5", "-t ", "a", "b", "c"]),
+    ("twelve.bin", ["-of", "a", "-of2", "b"]), ("twelve.bin", ["-oh", "-of2", "a", "-od", "b"]),
+    ("twelve.bin", ["-x", "2", "-y", "1", "-oH", "-of3", "a", "-of3", "b"]), ("fields.txt", ["-oH", "a"]),
+    ("fields.txt", ["a", "a"]), ("fields.txt", ["-q", "a"]), ("fields.txt", []),
+    ("fields.txt", ["-t,", "a"]), ("fields.txt", ["-a", "-oh", "a"]), ("with-header.txt", ["-ih", "-oh", "-"]),
+]
 CASES = [("total", a) for a in TOTAL] + [("rlam", a) for a in RLAM]
 STDIN = b"q1\nq2\n"
 
@@ -44,6 +56,25 @@ def main():
             changed += not os.path.exists(path) or open(path, "rb").read() != p.stdout
         else:
             open(path, "wb").write(p.stdout)
+    for k, (stdin, args) in enumerate(RSPLIT):
+        n = len(CASES) + k
+        with tempfile.TemporaryDirectory() as tmp:
+            data = open(os.path.join(DATA, stdin), "rb").read()
+            p = subprocess.run(["rsplit"] + args, capture_output=True, cwd=tmp, input=data)
+            files = {"stdout": p.stdout}
+            for name in sorted(os.listdir(tmp)):
+                files[name] = open(os.path.join(tmp, name), "rb").read()
+        outs = {}
+        for name, content in files.items():
+            out = f"expected/{n:02}.{name}"
+            outs[name] = out
+            path = os.path.join(DATA, out)
+            if check:
+                changed += not os.path.exists(path) or open(path, "rb").read() != content
+            else:
+                open(path, "wb").write(content)
+        cases.append({"program": "rsplit", "stdin": stdin, "args": args, "status": p.returncode,
+                      "outputs": outs})
     text = json.dumps(cases, indent=1) + "\n"
     path = os.path.join(DATA, "cases.json")
     if check:

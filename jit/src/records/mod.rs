@@ -10,6 +10,7 @@ pub mod format;
 pub mod input_format;
 pub mod laminate;
 mod parallel;
+pub mod split;
 pub mod total;
 
 use std::collections::HashMap;

@@ -54,8 +54,8 @@ pub fn word(s: &str) -> String {
 
 /// The header line `printargs` writes for this run: `radc <command>` and the arguments
 /// given, each as [`word`] quotes it.
-pub fn command_line(command: &str, args: &[String]) -> String {
-    let mut line = format!("radc {command}");
+pub fn command_line(program: &str, args: &[String]) -> String {
+    let mut line = program.to_string();
     for a in args {
         line.push(' ');
         line.push_str(&word(a));

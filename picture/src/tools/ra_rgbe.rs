@@ -20,6 +20,8 @@ pub struct Options {
     pub stops: i32,
     /// `-n`: the one frame to convert (0: all).
     pub frame: i64,
+    /// The name each frame's header gives the program (`ra_rgbe`, or `radc ra_rgbe`).
+    pub program: String,
 }
 
 /// One converted frame: its number (`FRAME=`, 0 when the header gives none) and bytes.
@@ -90,7 +92,7 @@ pub fn frames(o: &Options, data: &[u8], what: &str) -> (Vec<Frame>, Option<Strin
         }
         let mut out = b"#?RADIANCE\n".to_vec();
         out.extend_from_slice(&lines);
-        out.extend_from_slice(b"radc ra_rgbe");
+        out.extend_from_slice(o.program.as_bytes());
         if o.stops != 0 {
             out.extend_from_slice(format!(" -e {:+}", o.stops).as_bytes());
         }

@@ -134,7 +134,7 @@ pub fn run(args: &[String]) -> ExitCode {
         Err(e) => return fail(NAME, e),
     };
     let run = Run {
-        command_line: command_line(NAME, &args[..files_at]),
+        command_line: command_line(&crate::cli::programs::printed_name(NAME), &args[..files_at]),
         output_start: None,
     };
     match pfilt::filter(&o, &run, &data, path.unwrap_or("standard input")) {

@@ -42,7 +42,7 @@ pub fn run(args: &[String]) -> ExitCode {
         Ok(p) => p,
         Err(e) => return fail(NAME, format!("{what}: {e}")),
     };
-    let command = command_line(NAME, &args[..i]);
+    let command = command_line(&crate::cli::programs::printed_name(NAME), &args[..i]);
     let out = pflip::convert(&picture, horizontal, vertical, correct, &command);
     super::write_output(NAME, files.get(1).map(String::as_str), &out)
 }

@@ -33,7 +33,7 @@ pub fn run(args: &[String]) -> ExitCode {
         Err(e) => return fail(NAME, format!("{}: {e}", files[0])),
     };
     // protate's line names only its options it used, in this order.
-    let mut command = "radc protate".to_string();
+    let mut command = crate::cli::programs::printed_name(NAME);
     if ccw {
         command.push_str(" -r");
     }

@@ -151,7 +151,7 @@ pub fn run(args: &[String]) -> ExitCode {
     };
     let what = path.unwrap_or("standard input");
     let run = Run {
-        command_line: command_line(NAME, &args[..files_at]),
+        command_line: command_line(&crate::cli::programs::printed_name(NAME), &args[..files_at]),
         output_start: if o.reverse { None } else { stdout_position() },
     };
     let result = if o.reverse {

@@ -58,7 +58,7 @@ pub fn run(args: &[String]) -> ExitCode {
         Err(e) => return fail(NAME, e),
     };
     let run = Run {
-        command_line: command_line(NAME, &args[..i]),
+        command_line: command_line(&crate::cli::programs::printed_name(NAME), &args[..i]),
         output_start: None,
     };
     match ra_ppm::convert(&o, &run, &data) {

@@ -22,6 +22,7 @@ pub fn run(args: &[String]) -> ExitCode {
         flat: true,
         stops: 0,
         frame: 0,
+        program: crate::cli::programs::printed_name(NAME),
     };
     let o = &mut options;
     let mut force = false;

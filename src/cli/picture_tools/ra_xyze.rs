@@ -66,7 +66,7 @@ pub fn run(args: &[String]) -> ExitCode {
     };
     let what = files.first().map_or("standard input", String::as_str);
     let run = Run {
-        command_line: command_line(NAME, args),
+        command_line: command_line(&crate::cli::programs::printed_name(NAME), args),
         output_start: None,
     };
     match ra_xyze::convert(&o, &run, &data, what) {
