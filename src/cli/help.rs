@@ -22,6 +22,7 @@ const TEXTS: &[(&str, &str)] = &[
     ("rsplit", include_str!("help/rsplit.txt")),
     ("getinfo", include_str!("help/getinfo.txt")),
     ("pvalue", include_str!("help/pvalue.txt")),
+    ("radcompare", include_str!("help/radcompare.txt")),
     ("pflip", include_str!("help/pflip.txt")),
     ("protate", include_str!("help/protate.txt")),
     ("ra_ppm", include_str!("help/ra_ppm.txt")),

@@ -20,6 +20,7 @@ mod lsp;
 mod options;
 mod picture_tools;
 pub(crate) mod programs;
+mod radcompare;
 mod render;
 mod report;
 mod rlam;
@@ -150,6 +151,11 @@ const COMMANDS: &[Command] = &[
         name: "pfilt",
         summary: "resample a picture with a box or Gaussian filter and an exposure, as Radiance's pfilt",
         run: picture_tools::pfilt::run,
+    },
+    Command {
+        name: "radcompare",
+        summary: "compare Radiance files (text, pictures, binary values) within tolerances, as Radiance's radcompare",
+        run: radcompare::run,
     },
     Command {
         name: "pvalue",

@@ -71,6 +71,7 @@ pub(super) const PROGRAMS: &[Program] = &[
         command: "rsplit",
         runs_commands: true,
     },
+    program("radcompare", "radcompare"),
     program("pvalue", "pvalue"),
     program("pflip", "pflip"),
     program("protate", "protate"),

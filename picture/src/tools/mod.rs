@@ -12,6 +12,7 @@ pub mod pvalue;
 pub mod ra_ppm;
 pub mod ra_rgbe;
 pub mod ra_xyze;
+pub mod radcompare;
 
 /// What a picture program writes about its own run into the header it makes.
 #[derive(Clone, Debug, Default)]
