@@ -21,17 +21,13 @@ fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
-/// test/cal (cnt, rcalc, total, rlam, rsplit by radc; histo, tabfunc and ev by
-/// Radiance), every comparison by radc's radcompare at the suite's tolerances.
-#[test]
-fn radiance_cal_tests_pass_with_radc_first_on_path() {
-    let test = "radiance_suite::radiance_cal_tests_pass_with_radc_first_on_path";
-    let Some((corpus, library)) = radc_oracle::shared_corpus_and_library_or_skip(test) else {
-        return;
-    };
+/// Runs `make -k TARGETS` in a copy of the suite's folder `suite` with radc's links
+/// first on `PATH` and the oracle behind them; the make log, after asserting success.
+fn run_suite(test: &str, suite: &str, targets: &[&str], links_needed: &[&str]) -> Option<String> {
+    let (corpus, library) = radc_oracle::shared_corpus_and_library_or_skip(test)?;
     if Command::new("make").arg("--version").output().is_err() {
         eprintln!("SKIPPED (needs make): {test}");
-        return;
+        return None;
     }
     let dir = tempfile::tempdir().expect("temp dir");
     let links = dir.path().join("links");
@@ -42,11 +38,11 @@ fn radiance_cal_tests_pass_with_radc_first_on_path() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    for program in ["cnt", "rcalc", "total", "rlam", "rsplit", "radcompare"] {
+    for program in links_needed {
         assert!(links.join(program).exists(), "no link for {program}");
     }
-    let cal = dir.path().join("cal");
-    copy_dir(&corpus.join("test/cal"), &cal);
+    let work = dir.path().join(suite);
+    copy_dir(&corpus.join("test").join(suite), &work);
     let oracle_bin = library.parent().expect("pyradiance").join("bin");
     let path = format!(
         "{}:{}:{}",
@@ -56,7 +52,8 @@ fn radiance_cal_tests_pass_with_radc_first_on_path() {
     );
     let out = Command::new("make")
         .arg("-k")
-        .current_dir(&cal)
+        .args(targets)
+        .current_dir(&work)
         .env("PATH", &path)
         .env("RAYPATH", format!(".:{}", library.display()))
         .output()
@@ -66,6 +63,59 @@ fn radiance_cal_tests_pass_with_radc_first_on_path() {
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr)
     );
-    assert!(out.status.success(), "test/cal failed:\n{log}");
+    assert!(out.status.success(), "test/{suite} failed:\n{log}");
+    Some(log)
+}
+
+/// test/cal (cnt, rcalc, total, rlam, rsplit by radc; histo, tabfunc and ev by
+/// Radiance), every comparison by radc's radcompare at the suite's tolerances.
+#[test]
+fn radiance_cal_tests_pass_with_radc_first_on_path() {
+    let test = "radiance_suite::radiance_cal_tests_pass_with_radc_first_on_path";
+    let needed = ["cnt", "rcalc", "total", "rlam", "rsplit", "radcompare"];
+    let Some(log) = run_suite(test, "cal", &[], &needed) else {
+        return;
+    };
     assert_eq!(log.matches("radcompare ").count(), 9, "{log}");
+}
+
+/// test/gen for the generators radc implements (gendaymtx, replmarks and genblinds are
+/// Radiance's, and the oracle's gendaymtx no longer matches the suite's reference).
+#[test]
+fn radiance_gen_tests_pass_with_radc_first_on_path() {
+    let test = "radiance_suite::radiance_gen_tests_pass_with_radc_first_on_path";
+    let targets = [
+        "test-gensky",
+        "test-genbox",
+        "test-genrev",
+        "test-genworm",
+        "test-genprism",
+        "test-gensurf",
+    ];
+    let needed = [
+        "gensky",
+        "genbox",
+        "genrev",
+        "genworm",
+        "genprism",
+        "gensurf",
+        "radcompare",
+    ];
+    let Some(log) = run_suite(test, "gen", &targets, &needed) else {
+        return;
+    };
+    assert_eq!(log.matches("radcompare ").count(), 6, "{log}");
+}
+
+/// test/util's vwrays test (vwrays and radcompare by radc).
+#[test]
+fn radiance_vwrays_test_passes_with_radc_first_on_path() {
+    let test = "radiance_suite::radiance_vwrays_test_passes_with_radc_first_on_path";
+    let Some(log) = run_suite(test, "util", &["test-vwrays"], &["vwrays", "radcompare"]) else {
+        return;
+    };
+    assert!(
+        log.contains("radcompare ref/vwrays.txt vwrays.txt"),
+        "{log}"
+    );
 }

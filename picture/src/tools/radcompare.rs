@@ -453,7 +453,7 @@ pub fn compare(o: &CompareOptions, prog: &str, a: &Input, b: &Input) -> Verdict 
     }
     let (d1, d2) = (&a.data[p1.body..], &b.data[p2.body..]);
     let same = match p1.kind {
-        Kind::Text | Kind::Ascii => text(&mut c, a.name, b.name, d1, d2),
+        Kind::Text | Kind::Ascii => text(&mut c, (a.name, b.name), (d1, d2), (p1.lines, p2.lines)),
         Kind::Rgbe | Kind::Xyze => pictures(&mut c, a, b),
         Kind::Float => binary_values(&mut c, d1, d2, 4, (p1.swapped, p2.swapped), a.name, b.name),
         Kind::Double => binary_values(&mut c, d1, d2, 8, (p1.swapped, p2.swapped), a.name, b.name),
@@ -521,10 +521,15 @@ fn blank(l: &[u8]) -> bool {
     l.iter().all(|&c| is_c_space(c))
 }
 
-fn text(c: &mut Comparer, n1: &str, n2: &str, d1: &[u8], d2: &[u8]) -> bool {
+/// `compare_text`; line numbers count from the header lines (`lin1cnt`, `lin2cnt`).
+fn text(
+    c: &mut Comparer,
+    (n1, n2): (&str, &str),
+    (d1, d2): (&[u8], &[u8]),
+    (mut c1, mut c2): (usize, usize),
+) -> bool {
     let (l1, l2) = (lines(c.o, d1), lines(c.o, d2));
     let mut j = 0;
-    let (mut c1, mut c2) = (0usize, 0usize);
     for line in &l1 {
         c1 += 1;
         if blank(line) {
