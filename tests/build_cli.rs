@@ -82,6 +82,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "functions-",
             "brtd-",
             "aniso_functions-",
+            "aniso_patterns-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

@@ -723,7 +723,8 @@ impl Compiler<'_> {
         self.ir.get(kind).is_some_and(|k| match k.kind {
             PrimKind::Plastic { .. } | PrimKind::Metal { .. } => true,
             PrimKind::Other { .. }
-                if is_function_material(k.schema.name) || k.schema.name == "BRTDfunc" =>
+                if is_function_material(k.schema.name)
+                    || matches!(k.schema.name, "BRTDfunc" | "plastic2" | "metal2" | "trans2") =>
             {
                 true
             }
@@ -1455,6 +1456,7 @@ impl Compiler<'_> {
                     orientation_pattern,
                     metal: p.schema.name == "metal2",
                     transmission: (p.schema.name == "trans2").then(|| (real(6), real(7))),
+                    texture: Vec3::ZERO,
                 })
             }
             _ => {

@@ -331,6 +331,9 @@ def cases():
     an_view += box_rays(rng, 20, [-1, -2, .5], [1, 0, 1.5], toward=[0, 1, 1], spread=.8)
     an_view += box_rays(rng, 20, [-1, -3, .3], [0, -2.5, 1], toward=[-1.5, -1.5, .5], spread=.4)
     case("aniso_functions-view", "aniso_functions.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
+    case("aniso_patterns-view", "aniso_patterns.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
+    case("aniso_patterns-irradiance", "aniso_patterns.rad", ["-I"],
+         irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
     return out
 
 

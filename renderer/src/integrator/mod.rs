@@ -263,6 +263,10 @@ impl<'a> Tracer<'a> {
                 b.pattern_color = pcol;
                 b.texture = pert;
             }
+            Material::Anisotropic(a) => {
+                a.color *= pcol;
+                a.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));

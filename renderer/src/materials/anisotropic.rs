@@ -23,6 +23,9 @@ pub struct Anisotropic {
     pub metal: bool,
     /// `trans2`: transmitted fraction and its specular part.
     pub transmission: Option<(f64, f64)>,
+    /// The normal's perturbation at the hit being shaded (see `Plastic::texture`).
+    #[serde(skip)]
+    pub texture: Vec3,
 }
 
 struct Shading {
@@ -49,18 +52,21 @@ impl Anisotropic {
         if r.kind.any(RayKind::SHADOW) {
             return; // opaque to shadow rays, even trans2
         }
+        // `flipsurface` turns the perturbation with the normal.
+        let mut pert = self.texture;
         if r.rod < 0.0 {
             if !t.options().backface_visible {
                 return t.transmit(r);
             }
             r.flip();
+            pert = -pert;
         }
         let orientation = match self.orientation_pattern {
             // A compute error gives a zero vector (then the frame is made up).
             Some(p) => t.orientation(p, &r.view()).unwrap_or(Vec3::ZERO),
             None => self.orientation,
         };
-        let s = self.setup(t, r, orientation);
+        let s = self.setup(t, r, orientation, pert);
         let threshold = t.options().specular_threshold + FTINY;
         // Highlights above -st are sampled at random by Radiance; radc does not sample
         // them (its result then lacks that part).
@@ -85,7 +91,13 @@ impl Anisotropic {
         t.direct(r, &|dir, omega| s.source_coefficient(dir, omega));
     }
 
-    fn setup(&self, t: &impl ShadingContext, r: &RayState, orientation: Vec3) -> Shading {
+    fn setup(
+        &self,
+        t: &impl ShadingContext,
+        r: &RayState,
+        orientation: Vec3,
+        pert: Vec3,
+    ) -> Shading {
         let specular_reflection = self.spec;
         let reflects = specular_reflection > FTINY;
         let specular = if self.metal {
@@ -100,7 +112,8 @@ impl Anisotropic {
             }
             None => (0.0, 0.0),
         };
-        let normal = r.normal;
+        let (normal, cos) = super::plastic::perturbed_normal(r, pert);
+        let textured = pert.dot(pert) > FTINY * FTINY;
         let (mut u_alpha, mut v_alpha) = (self.u_rough, self.v_rough);
         // The frame: v across the projected orientation, u along it (`getacoords`).
         let mut v = normal.cross(orientation);
@@ -117,7 +130,7 @@ impl Anisotropic {
             color: self.color,
             specular,
             normal,
-            cos_incidence: r.rod.max(0.001),
+            cos_incidence: cos.max(0.001),
             u,
             v,
             u_alpha,
@@ -128,7 +141,7 @@ impl Anisotropic {
             specular_transmission,
             reflects,
             transmits: specular_transmission > FTINY,
-            flat: t.hit_is_flat(r),
+            flat: !textured && t.hit_is_flat(r),
             ray_dir: r.dir,
         }
     }
