@@ -83,6 +83,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "brtd-",
             "aniso_functions-",
             "aniso_patterns-",
+            "mirror_patterns-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

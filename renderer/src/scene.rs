@@ -721,7 +721,7 @@ impl Compiler<'_> {
     /// transmitted ray by them, not modelled yet); lights take patterns only.
     fn takes_modifier(&self, kind: PrimId, texture: bool) -> bool {
         self.ir.get(kind).is_some_and(|k| match k.kind {
-            PrimKind::Plastic { .. } | PrimKind::Metal { .. } => true,
+            PrimKind::Plastic { .. } | PrimKind::Metal { .. } | PrimKind::Mirror { .. } => true,
             PrimKind::Other { .. }
                 if is_function_material(k.schema.name)
                     || matches!(k.schema.name, "BRTDfunc" | "plastic2" | "metal2" | "trans2") =>
@@ -1317,6 +1317,7 @@ impl Compiler<'_> {
                 Material::Mirror(Mirror {
                     color: rgb(color),
                     alternate,
+                    texture: Vec3::ZERO,
                 })
             }
             PrimKind::Glass {

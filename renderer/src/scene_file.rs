@@ -309,6 +309,7 @@ mod tests {
         looped.materials.push(Material::Mirror(Mirror {
             color: Vec3::ONE,
             alternate: Alternate::Material(last),
+            texture: Vec3::ZERO,
         }));
         assert!(looped.validate().is_err());
         let e = decode(&encode(&looped).expect("encodes")).expect_err("a loop");
@@ -319,6 +320,7 @@ mod tests {
         chained.materials.push(Material::Mirror(Mirror {
             color: Vec3::ONE,
             alternate: Alternate::Material(first),
+            texture: Vec3::ZERO,
         }));
         assert!(chained.validate().is_ok());
     }

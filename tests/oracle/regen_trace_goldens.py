@@ -334,6 +334,12 @@ def cases():
     case("aniso_patterns-view", "aniso_patterns.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
     case("aniso_patterns-irradiance", "aniso_patterns.rad", ["-I"],
          irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
+    mp_view = box_rays(rng, 40, [-2, -2, .5], [2, 0, 2.5], toward=[0, 3, 1.5], spread=2)
+    mp_view += box_rays(rng, 40, [-2, -2, .5], [2, 2, 2.5], toward=[3, 0, 1.5], spread=2)
+    mp_view += box_rays(rng, 30, [-2, -2, .5], [2, 2, 2.5], toward=[-3, 0, 1.5], spread=2)
+    mp_view += box_rays(rng, 20, [-2, -2, 1], [2, 2, 2], toward=[0, 0, 0], spread=3)
+    case("mirror_patterns-view", "mirror_patterns.rad", ["-av", ".05", ".05", ".05"], mp_view, "-ovL")
+    case("mirror_patterns-relayed", "mirror_patterns.rad", ["-av", ".05", ".05", ".05", "-dr", "1"], mp_view, "-ovL")
     return out
 
 

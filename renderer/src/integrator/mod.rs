@@ -267,6 +267,10 @@ impl<'a> Tracer<'a> {
                 a.color *= pcol;
                 a.texture = pert;
             }
+            Material::Mirror(m) => {
+                m.color *= pcol;
+                m.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));

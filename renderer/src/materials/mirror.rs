@@ -4,12 +4,15 @@
 use super::Alternate;
 use super::ShadingContext;
 use crate::integrator::{RayKind, RayState};
-use crate::math::{Color, normalize};
+use crate::math::{Color, FTINY, Vec3, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Mirror {
     pub color: Color,
     pub alternate: Alternate,
+    /// The normal's perturbation at the hit being shaded (see `Plastic::texture`).
+    #[serde(skip)]
+    pub texture: Vec3,
 }
 
 impl Mirror {
@@ -41,7 +44,20 @@ impl Mirror {
         let Some(mut child) = t.spawn(r, RayKind::REFLECTED, Some(self.color)) else {
             return;
         };
-        child.dir = r.dir + r.normal * (2.0 * r.rod);
+        // A texture tips the reflection, except for relayed sources and ambient rays,
+        // and never under the surface (m_mirror's `rpure`).
+        let mut pure = true;
+        if relay.is_none()
+            && !r.kind.any(RayKind::AMBIENT)
+            && self.texture.dot(self.texture) > FTINY * FTINY
+        {
+            let (normal, cos) = super::plastic::perturbed_normal(r, self.texture);
+            child.dir = r.dir + normal * (2.0 * cos);
+            pure = false;
+        }
+        if pure || child.dir.dot(r.normal) <= FTINY {
+            child.dir = r.dir + r.normal * (2.0 * r.rod);
+        }
         normalize(&mut child.dir);
         // A shadow ray to a virtual source goes on toward the source it images.
         child.source = relay;
@@ -50,7 +66,7 @@ impl Mirror {
         r.mirror_color = c;
         r.color += c;
         r.mirror_length = r.length;
-        if t.hit_is_flat(r) {
+        if pure && t.hit_is_flat(r) {
             r.mirror_length += child.effective_length();
         }
     }
@@ -60,7 +76,6 @@ impl Mirror {
 mod tests {
     use super::*;
     use crate::materials::context::scripted::{Scripted, hit};
-    use crate::math::Vec3;
 
     #[test]
     fn a_mirror_reflects_about_the_normal_and_tints_what_it_sees() {
@@ -71,6 +86,7 @@ mod tests {
         let m = Mirror {
             color: Color::new(0.9, 0.5, 0.1),
             alternate: Alternate::None,
+            texture: Vec3::ZERO,
         };
         let mut r = hit(Vec3::new(0.0, 1.0, -2.0));
         m.shade(&t, &mut r);
