@@ -84,6 +84,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "aniso_functions-",
             "aniso_patterns-",
             "mirror_patterns-",
+            "glass_patterns-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

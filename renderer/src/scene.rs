@@ -721,7 +721,10 @@ impl Compiler<'_> {
     /// transmitted ray by them, not modelled yet); lights take patterns only.
     fn takes_modifier(&self, kind: PrimId, texture: bool) -> bool {
         self.ir.get(kind).is_some_and(|k| match k.kind {
-            PrimKind::Plastic { .. } | PrimKind::Metal { .. } | PrimKind::Mirror { .. } => true,
+            PrimKind::Plastic { .. }
+            | PrimKind::Metal { .. }
+            | PrimKind::Mirror { .. }
+            | PrimKind::Glass { .. } => true,
             PrimKind::Other { .. }
                 if is_function_material(k.schema.name)
                     || matches!(k.schema.name, "BRTDfunc" | "plastic2" | "metal2" | "trans2") =>
@@ -1326,6 +1329,8 @@ impl Compiler<'_> {
             } => Material::Glass(Glass {
                 transmission: rgb(transmission),
                 index: *index,
+                pattern_color: Vec3::ONE,
+                texture: Vec3::ZERO,
             }),
             PrimKind::Dielectric {
                 transmission,

@@ -340,6 +340,12 @@ def cases():
     mp_view += box_rays(rng, 20, [-2, -2, 1], [2, 2, 2], toward=[0, 0, 0], spread=3)
     case("mirror_patterns-view", "mirror_patterns.rad", ["-av", ".05", ".05", ".05"], mp_view, "-ovL")
     case("mirror_patterns-relayed", "mirror_patterns.rad", ["-av", ".05", ".05", ".05", "-dr", "1"], mp_view, "-ovL")
+    gp_view = box_rays(rng, 50, [-3, -3, .5], [3, -1, 2.2], toward=[0, 1, 1.2], spread=2.5)
+    gp_view += box_rays(rng, 30, [-3, 2, .5], [3, 3.5, 2.2], toward=[0, 1, 1.2], spread=2.5)
+    gp_view += box_rays(rng, 30, [-1, -1, 1], [1, 1, 2], toward=[0, 0, 4], spread=2)
+    case("glass_patterns-view", "glass_patterns.rad", ["-av", ".05", ".05", ".05"], gp_view, "-ovL")
+    case("glass_patterns-irradiance", "glass_patterns.rad", ["-I"],
+         irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
     return out
 
 

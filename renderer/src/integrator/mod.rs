@@ -271,6 +271,10 @@ impl<'a> Tracer<'a> {
                 m.color *= pcol;
                 m.texture = pert;
             }
+            Material::Glass(g) => {
+                g.pattern_color = pcol;
+                g.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));

@@ -35,14 +35,10 @@ pub struct Brtd {
     /// The pattern that evaluates its expressions (`procedural::PatternKind::Brtd`).
     pub pattern: u32,
     /// The patterns' colour and the texture's perturbation at the hit being shaded.
-    #[serde(skip, default = "one")]
+    #[serde(skip, default = "super::one")]
     pub pattern_color: Color,
     #[serde(skip)]
     pub texture: Vec3,
-}
-
-fn one() -> Color {
-    Color::ONE
 }
 
 impl Brtd {

@@ -5,12 +5,18 @@
 
 use super::ShadingContext;
 use crate::integrator::{RayKind, RayState};
-use crate::math::{Color, normalize};
+use crate::math::{Color, FTINY, Vec3, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Glass {
     pub transmission: Color,
     pub index: f64,
+    /// The patterns' colour at the hit being shaded, which tints the transmitted ray
+    /// only, and the texture's perturbation (see `Plastic::texture`).
+    #[serde(skip, default = "super::one")]
+    pub pattern_color: Color,
+    #[serde(skip)]
+    pub texture: Vec3,
 }
 
 impl Glass {
@@ -26,10 +32,17 @@ impl Glass {
         } else if r.kind.any(RayKind::SHADOW) {
             return;
         }
+        let mut pert = self.texture;
         if r.rod < 0.0 {
             r.flip();
+            pert = -pert;
         }
-        let cos_incidence = r.rod;
+        let textured = pert.dot(pert) > FTINY * FTINY;
+        let (normal, cos_incidence) = if textured {
+            super::plastic::perturbed_normal(r, pert)
+        } else {
+            (r.normal, r.rod)
+        };
         let cos2 = ((1.0 - 1.0 / (n * n)) + cos_incidence * cos_incidence / (n * n)).sqrt();
         if transmits {
             color = Color::new(
@@ -46,12 +59,22 @@ impl Glass {
                 0.5 * (1.0 - r1e).powi(2) * d / (1.0 - r1e * r1e * d * d)
                     + 0.5 * (1.0 - r1m).powi(2) * d / (1.0 - r1m * r1m * d * d)
             };
-            let coef = Color::new(through(color.x), through(color.y), through(color.z));
+            let coef = Color::new(through(color.x), through(color.y), through(color.z))
+                * self.pattern_color;
             if let Some(mut child) = t.spawn(r, RayKind::TRANS, Some(coef)) {
                 child.dir = r.dir;
+                let shadow_or_ambient = r.kind.any(RayKind::SHADOW | RayKind::AMBIENT);
+                if textured && !shadow_or_ambient {
+                    let mut d = r.dir + pert * (2.0 * (1.0 - n));
+                    if normalize(&mut d) != 0.0 {
+                        child.dir = d;
+                    }
+                }
                 t.trace(&mut child);
                 r.color += child.color * child.coef;
-                r.other_length = r.length + child.effective_length();
+                if !textured || shadow_or_ambient {
+                    r.other_length = r.length + child.effective_length();
+                }
             }
         }
         if r.kind.any(RayKind::SHADOW) {
@@ -66,14 +89,14 @@ impl Glass {
         let Some(mut child) = t.spawn(r, RayKind::REFLECTED, Some(coef)) else {
             return;
         };
-        child.dir = r.dir + r.normal * (2.0 * cos_incidence);
+        child.dir = r.dir + normal * (2.0 * cos_incidence);
         normalize(&mut child.dir);
         t.trace(&mut child);
         let c = child.color * child.coef;
         r.mirror_color = c;
         r.color += c;
         r.mirror_length = r.length;
-        if t.hit_is_flat(r) {
+        if t.hit_is_flat(r) && (!textured || r.kind.any(RayKind::AMBIENT)) {
             r.mirror_length += child.effective_length();
         }
     }
@@ -91,6 +114,8 @@ mod tests {
         let glass = Glass {
             transmission: Color::ONE,
             index: 1.52,
+            pattern_color: Color::ONE,
+            texture: Vec3::ZERO,
         };
         let mut r = hit(Vec3::new(0.0, 0.0, -1.0));
         glass.shade(&t, &mut r);

@@ -20,6 +20,12 @@ pub use context::ShadingContext;
 
 use crate::math::Color;
 
+/// The colour patterns leave a material with when none applies (serde's default for
+/// the per-hit pattern colours, which scene files never store).
+pub(crate) fn one() -> Color {
+    Color::ONE
+}
+
 /// Index into [`crate::scene::Scene::materials`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct MaterialId(pub u32);
