@@ -85,6 +85,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "aniso_patterns-",
             "mirror_patterns-",
             "glass_patterns-",
+            "trans_textures-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

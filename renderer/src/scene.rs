@@ -717,8 +717,9 @@ impl Compiler<'_> {
     }
 
     /// Whether material `kind` is shaded with patterns (or, `texture`, textures) yet:
-    /// textures perturb the normal of plastic and metal (trans also bends its
-    /// transmitted ray by them, not modelled yet); lights take patterns only.
+    /// textures perturb the normal of the normal materials (and bend trans's and
+    /// glass's transmitted rays), mirrors, anisotropic and function materials; lights
+    /// take patterns only.
     fn takes_modifier(&self, kind: PrimId, texture: bool) -> bool {
         self.ir.get(kind).is_some_and(|k| match k.kind {
             PrimKind::Plastic { .. }
@@ -731,10 +732,8 @@ impl Compiler<'_> {
             {
                 true
             }
-            PrimKind::Trans { .. }
-            | PrimKind::Light { .. }
-            | PrimKind::Glow { .. }
-            | PrimKind::Spotlight { .. } => !texture,
+            PrimKind::Trans { .. } => true,
+            PrimKind::Light { .. } | PrimKind::Glow { .. } | PrimKind::Spotlight { .. } => !texture,
             _ => false,
         })
     }

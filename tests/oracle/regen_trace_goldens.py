@@ -346,6 +346,9 @@ def cases():
     case("glass_patterns-view", "glass_patterns.rad", ["-av", ".05", ".05", ".05"], gp_view, "-ovL")
     case("glass_patterns-irradiance", "glass_patterns.rad", ["-I"],
          irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
+    case("trans_textures-view", "trans_textures.rad", ["-av", ".05", ".05", ".05"], gp_view, "-ovL")
+    case("trans_textures-irradiance", "trans_textures.rad", ["-I"],
+         irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
     return out
 
 

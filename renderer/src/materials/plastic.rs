@@ -31,6 +31,22 @@ pub fn perturbed_normal(r: &RayState, pert: Vec3) -> (Vec3, f64) {
     (norm, newdot)
 }
 
+/// normal.c's `prdir`: the ray's direction less a texture's perturbation (normalized)
+/// when that still leaves the surface behind it, for rays other than shadow and ambient
+/// ones; else the ray's own direction.
+fn transmitted_dir(r: &RayState, pert: Vec3) -> Vec3 {
+    if pert.dot(pert) <= FTINY * FTINY || r.kind.any(RayKind::SHADOW | RayKind::AMBIENT) {
+        return r.dir;
+    }
+    let mut d = r.dir - pert;
+    if d.dot(r.normal) < -FTINY {
+        normalize(&mut d);
+        d
+    } else {
+        r.dir
+    }
+}
+
 /// Fresnel estimate at cosine `ci` (normal.c's `FRESNE`).
 fn fresnel(ci: f64) -> f64 {
     (-5.85 * ci).exp() - 0.00202943064
@@ -74,6 +90,9 @@ pub struct Shading {
     has_rough_transmission: bool,
     flat: bool,
     ray_dir: Vec3,
+    /// Where the transmitted ray goes (`prdir`): the ray's direction, bent by a texture
+    /// except for shadow and ambient rays.
+    transmitted_dir: Vec3,
 }
 
 impl Plastic {
@@ -190,6 +209,7 @@ impl Plastic {
             // normal.c: a textured surface is not treated as flat.
             flat: pert.dot(pert) <= FTINY * FTINY && t.hit_is_flat(r),
             ray_dir: r.dir,
+            transmitted_dir: transmitted_dir(r, pert),
         }
     }
 
@@ -199,7 +219,7 @@ impl Plastic {
         let Some(mut child) = t.spawn(r, RayKind::TRANS, Some(coef)) else {
             return;
         };
-        child.dir = r.dir;
+        child.dir = s.transmitted_dir;
         t.trace(&mut child);
         r.color += child.color * child.coef;
         if s.specular_transmission >= 1.0 - FTINY {
@@ -296,7 +316,7 @@ impl Plastic {
             } else {
                 (s.alpha2 * -q.ln()).sqrt()
             };
-            child.dir = s.ray_dir + (u * phi.cos() + v * phi.sin()) * d;
+            child.dir = s.transmitted_dir + (u * phi.cos() + v * phi.sin()) * d;
             normalize(&mut child.dir);
             if child.dir.dot(r.normal) < -FTINY {
                 t.trace(&mut child);
@@ -354,7 +374,7 @@ impl Shading {
         }
         if ldot < -FTINY && self.has_rough_transmission {
             let a2 = self.alpha2 + omega / PI;
-            let g = ((2.0 * self.ray_dir.dot(ldir) - 2.0) / a2).exp() / (PI * a2);
+            let g = ((2.0 * self.transmitted_dir.dot(ldir) - 2.0) / a2).exp() / (PI * a2);
             if g > FTINY {
                 out += self.color
                     * (g * self.specular_transmission
