@@ -86,6 +86,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "mirror_patterns-",
             "glass_patterns-",
             "trans_textures-",
+            "dielectric_patterns-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

@@ -725,7 +725,9 @@ impl Compiler<'_> {
             PrimKind::Plastic { .. }
             | PrimKind::Metal { .. }
             | PrimKind::Mirror { .. }
-            | PrimKind::Glass { .. } => true,
+            | PrimKind::Glass { .. }
+            | PrimKind::Dielectric { .. }
+            | PrimKind::Interface { .. } => true,
             PrimKind::Other { .. }
                 if is_function_material(k.schema.name)
                     || matches!(k.schema.name, "BRTDfunc" | "plastic2" | "metal2" | "trans2") =>
@@ -1347,12 +1349,16 @@ impl Compiler<'_> {
                     inside: rgb(transmission),
                     index: *index,
                     outside: None,
+                    pattern_color: Vec3::ONE,
+                    texture: Vec3::ZERO,
                 })
             }
             PrimKind::Interface { t1, n1, t2, n2 } => Material::Dielectric(Dielectric {
                 inside: rgb(t1),
                 index: *n1 / *n2,
                 outside: Some(rgb(t2)),
+                pattern_color: Vec3::ONE,
+                texture: Vec3::ZERO,
             }),
             PrimKind::Antimatter { modifiers } => {
                 let mut ids = Vec::new();

@@ -349,6 +349,12 @@ def cases():
     case("trans_textures-view", "trans_textures.rad", ["-av", ".05", ".05", ".05"], gp_view, "-ovL")
     case("trans_textures-irradiance", "trans_textures.rad", ["-I"],
          irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
+    dp_view = box_rays(rng, 40, [-3, -3, .5], [0, -1, 2.2], toward=[-1.5, 0, 1], spread=.8)
+    dp_view += box_rays(rng, 40, [0, -3, 1], [3, -1, 2.5], toward=[1.5, 0, .5], spread=1.5)
+    dp_view += box_rays(rng, 30, [0, -1, 1], [3, 1, 2.5], toward=[1.5, 1.5, 1.5], spread=.6)
+    case("dielectric_patterns-view", "dielectric_patterns.rad", ["-av", ".05", ".05", ".05"], dp_view, "-ovL")
+    case("dielectric_patterns-irradiance", "dielectric_patterns.rad", ["-I"],
+         irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
     return out
 
 

@@ -275,6 +275,10 @@ impl<'a> Tracer<'a> {
                 g.pattern_color = pcol;
                 g.texture = pert;
             }
+            Material::Dielectric(d) => {
+                d.pattern_color = pcol;
+                d.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));

@@ -5,7 +5,7 @@
 
 use super::ShadingContext;
 use crate::integrator::{RayKind, RayState};
-use crate::math::{Color, FTINY, normalize};
+use crate::math::{Color, FTINY, Vec3, normalize};
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Dielectric {
@@ -16,6 +16,12 @@ pub struct Dielectric {
     /// `interface`: transmission per unit length of the outside medium (a plain
     /// dielectric has the scene's medium, `-me`).
     pub outside: Option<Color>,
+    /// The patterns' colour at the hit being shaded, which multiplies the transmissions,
+    /// and the texture's perturbation (see `Plastic::texture`).
+    #[serde(skip, default = "super::one")]
+    pub pattern_color: Color,
+    #[serde(skip)]
+    pub texture: Vec3,
 }
 
 /// Extinction coefficient for a transmission per unit length (dielectric.c's `mylog`).
@@ -34,21 +40,36 @@ fn extinction(c: Color) -> Color {
 
 impl Dielectric {
     pub fn shade(&self, t: &impl ShadingContext, r: &mut RayState) {
-        let mut cos1 = r.rod;
-        let mut normal = r.normal;
-        let flat = t.hit_is_flat(r);
+        // dielectric.c's `hastexture`: 1 with a texture, its sign turned for rays
+        // leaving, so the accidental-reflection tests look from the ray's side.
+        let mut textured: f64 = if self.texture.dot(self.texture) > FTINY * FTINY {
+            1.0
+        } else {
+            0.0
+        };
+        let (mut normal, mut cos1) = if textured != 0.0 {
+            super::plastic::perturbed_normal(r, self.texture)
+        } else {
+            (r.normal, r.rod)
+        };
+        let flat = t.hit_is_flat(r) && (textured == 0.0 || r.kind.any(RayKind::AMBIENT));
         let mut nratio = self.index;
+        let (inside, outside) = (
+            self.inside * self.pattern_color,
+            self.outside.map(|o| o * self.pattern_color),
+        );
         let refracted_extinction;
         if cos1 < 0.0 {
             // Leaving: this ray travelled inside.
+            textured = -textured;
             cos1 = -cos1;
             normal = -normal;
-            r.extinction = extinction(self.inside);
-            refracted_extinction = self.outside.map_or(t.options().medium, extinction);
+            r.extinction = extinction(inside);
+            refracted_extinction = outside.map_or(t.options().medium, extinction);
         } else {
             nratio = 1.0 / nratio;
-            refracted_extinction = extinction(self.inside);
-            if let Some(out) = self.outside {
+            refracted_extinction = extinction(inside);
+            if let Some(out) = outside {
                 r.extinction = extinction(out);
             }
         }
@@ -63,7 +84,12 @@ impl Dielectric {
             // Transmitted radiance grows as the solid angle narrows.
             let trans = (1.0 - refl) * nratio * nratio;
             if let Some(mut child) = t.spawn(r, RayKind::REFRACTED, Some(Color::splat(trans))) {
-                child.dir = r.dir * nratio + normal * (nratio * cos1 - cos2);
+                let d1 = nratio * cos1 - cos2;
+                child.dir = r.dir * nratio + normal * d1;
+                // A texture may turn the refraction back out: then it is ignored.
+                if textured != 0.0 && child.dir.dot(r.normal) * textured >= -FTINY {
+                    child.dir = r.dir * nratio + r.normal * (d1 * textured);
+                }
                 normalize(&mut child.dir);
                 child.extinction = refracted_extinction;
                 t.trace(&mut child);
@@ -82,6 +108,10 @@ impl Dielectric {
             return;
         };
         child.dir = r.dir + normal * (2.0 * cos1);
+        // ... and the reflection under the surface: then off the unperturbed normal.
+        if textured != 0.0 && child.dir.dot(r.normal) * textured <= FTINY {
+            child.dir = r.dir + r.normal * (2.0 * r.rod);
+        }
         normalize(&mut child.dir);
         t.trace(&mut child);
         let c = child.color * child.coef;
@@ -105,6 +135,8 @@ mod tests {
             inside: Color::ONE,
             index: 1.33,
             outside: None,
+            pattern_color: Color::ONE,
+            texture: Vec3::ZERO,
         }
     }
 
