@@ -920,13 +920,7 @@ impl Compiler<'_> {
             None
         };
         let file_at = if data_form { 2 } else { 1 };
-        let file = &strings[file_at];
-        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
-            self.unsupported(id, "its function file could not be loaded");
-            return None;
-        };
-        let program = self.functions.program(file, module);
-        self.functions.bind_shading_variables(program);
+        let program = self.material_program(id, &strings[file_at], true)?;
         use crate::procedural::brdf::{LIGHT_CHANNEL, VALUE_CHANNEL};
         let light: Vec<u32> = (0..4).map(|i| LIGHT_CHANNEL + i).collect();
         let dims = data.as_ref().map_or(0, |d| d.dimensions());
@@ -970,6 +964,20 @@ impl Compiler<'_> {
             pattern,
             texture: Vec3::ZERO,
         })
+    }
+
+    /// The program of a material's function file, refusing the material when the file
+    /// could not be loaded; with m_brdf.c's shading variables bound when `shading`.
+    fn material_program(&mut self, id: PrimId, file: &str, shading: bool) -> Option<ProgramId> {
+        let Some(module) = self.ir.functions.0.get(file) else {
+            self.unsupported(id, "its function file could not be loaded");
+            return None;
+        };
+        let program = self.functions.program(file, module);
+        if shading {
+            self.functions.bind_shading_variables(program);
+        }
+        Some(program)
     }
 
     /// The frame a material's functions see (func.c `getfunc`'s `bxp`): the inverse
@@ -1030,12 +1038,7 @@ impl Compiler<'_> {
             self.unsupported(id, "bad # arguments");
             return None;
         }
-        let file = &strings[3];
-        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
-            self.unsupported(id, "its function file could not be loaded");
-            return None;
-        };
-        let program = self.functions.program(file, module);
+        let program = self.material_program(id, &strings[3], false)?;
         let mut exprs = Vec::new();
         for e in &strings[..3] {
             match self.functions.add_expression(program, e) {
@@ -1065,13 +1068,7 @@ impl Compiler<'_> {
             self.unsupported(id, "bad # arguments");
             return None;
         }
-        let file = &strings[9];
-        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
-            self.unsupported(id, "its function file could not be loaded");
-            return None;
-        };
-        let program = self.functions.program(file, module);
-        self.functions.bind_shading_variables(program);
+        let program = self.material_program(id, &strings[9], true)?;
         let mut exprs = Vec::new();
         for e in &strings[..6] {
             match self.functions.add_expression(program, e) {
