@@ -87,6 +87,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "glass_patterns-",
             "trans_textures-",
             "dielectric_patterns-",
+            "ashik-",
         ]
         .iter()
         .any(|p| id.starts_with(p));

@@ -96,7 +96,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
         "aBSDF" => material("void aBSDF m 5 b.xml 0 0 1 f.cal 0 0"),
         "prism1" => material("void prism1 m 5 v v v v f.cal 0 0"),
         "prism2" => material("void prism2 m 9 v v v v v v v v f.cal 0 0"),
-        "ashik2" => material("void ashik2 m 4 0 0 1 f.cal 0 8 .5 .5 .5 .5 .5 .5 10 10"),
         _ => return None,
     };
     let surface = if matches!(type_name, "instance" | "mesh") {

@@ -19,6 +19,7 @@ use crate::bvh::Bvh;
 use crate::lights::{Lamp, Source, SourceShape, SourceTarget};
 use crate::materials::anisotropic::Anisotropic;
 use crate::materials::antimatter::Antimatter;
+use crate::materials::ashikhmin::Ashikhmin;
 use crate::materials::brtd::Brtd;
 use crate::materials::dielectric::Dielectric;
 use crate::materials::function::FunctionMaterial;
@@ -730,7 +731,10 @@ impl Compiler<'_> {
             | PrimKind::Interface { .. } => true,
             PrimKind::Other { .. }
                 if is_function_material(k.schema.name)
-                    || matches!(k.schema.name, "BRTDfunc" | "plastic2" | "metal2" | "trans2") =>
+                    || matches!(
+                        k.schema.name,
+                        "BRTDfunc" | "plastic2" | "metal2" | "trans2" | "ashik2"
+                    ) =>
             {
                 true
             }
@@ -1422,6 +1426,37 @@ impl Compiler<'_> {
                     Vec3::ZERO
                 };
                 Material::Mist(Mist { extinction })
+            }
+            PrimKind::Other { strings, reals } if p.schema.name == "ashik2" => {
+                let number = |i: usize| {
+                    strings
+                        .get(i)
+                        .and_then(|w| w.parse::<f64>().ok())
+                        .filter(|x| x.is_finite())
+                };
+                if reals.len() != 8 {
+                    self.unsupported(kind, "bad number of real arguments");
+                    return None;
+                }
+                let numeric = match (number(0), number(1), number(2)) {
+                    (Some(ux), Some(uy), Some(uz)) if strings.len() <= 4 => {
+                        Some(Vec3::new(ux, uy, uz))
+                    }
+                    _ => None,
+                };
+                let orientation_pattern = match numeric {
+                    Some(_) => None,
+                    None => Some(self.orientation_pattern(kind, strings, reals, p.transform)?),
+                };
+                Material::Ashikhmin(Ashikhmin {
+                    color: Vec3::new(reals[0], reals[1], reals[2]),
+                    specular: Vec3::new(reals[3], reals[4], reals[5]),
+                    u_power: reals[6],
+                    v_power: reals[7],
+                    orientation: numeric.unwrap_or(Vec3::ZERO),
+                    orientation_pattern,
+                    texture: Vec3::ZERO,
+                })
             }
             PrimKind::Other { strings, reals } if p.schema.name == "BRTDfunc" => {
                 let transparent = strings.iter().skip(3).take(3).any(|w| w != "0");

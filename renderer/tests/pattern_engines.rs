@@ -71,6 +71,7 @@ fn jit_and_interpreter_shade_mixtures_and_texture_data_alike() {
     same_pixels("glass_patterns.rad", 400);
     same_pixels("trans_textures.rad", 400);
     same_pixels("dielectric_patterns.rad", 400);
+    same_pixels("ashik.rad", 400);
 }
 
 fn same_pixels(scene: &str, min_seen: usize) {

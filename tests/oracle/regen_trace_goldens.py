@@ -332,6 +332,9 @@ def cases():
     an_view += box_rays(rng, 20, [-1, -3, .3], [0, -2.5, 1], toward=[-1.5, -1.5, .5], spread=.4)
     case("aniso_functions-view", "aniso_functions.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
     case("aniso_patterns-view", "aniso_patterns.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
+    case("ashik-view", "ashik.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
+    case("ashik-irradiance", "ashik.rad", ["-I"],
+         irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
     case("aniso_patterns-irradiance", "aniso_patterns.rad", ["-I"],
          irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
     mp_view = box_rays(rng, 40, [-2, -2, .5], [2, 0, 2.5], toward=[0, 3, 1.5], spread=2)

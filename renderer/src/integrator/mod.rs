@@ -279,6 +279,10 @@ impl<'a> Tracer<'a> {
                 d.pattern_color = pcol;
                 d.texture = pert;
             }
+            Material::Ashikhmin(a) => {
+                a.color *= pcol;
+                a.texture = pert;
+            }
             _ => {}
         }
         self.shade_with(r, Some(&shaded));
@@ -298,7 +302,8 @@ impl<'a> Tracer<'a> {
                     | Material::Mirror(_)
                     | Material::Anisotropic(_)
                     | Material::Function(_)
-                    | Material::Brtd(..),
+                    | Material::Brtd(..)
+                    | Material::Ashikhmin(_),
                 ) => {
                     return LAMBERTIAN.shade(self, r);
                 }
@@ -317,6 +322,7 @@ impl<'a> Tracer<'a> {
             Some(Material::Mixture(m)) => m.shade(self, r),
             Some(Material::Function(f)) => f.shade(self, r),
             Some(Material::Brtd(b, _)) => b.shade(self, r),
+            Some(Material::Ashikhmin(a)) => a.shade(self, r),
             None => self.transmit(r),
         }
     }

@@ -3,6 +3,7 @@
 
 pub mod anisotropic;
 pub mod antimatter;
+pub mod ashikhmin;
 pub mod brtd;
 pub mod context;
 pub mod dielectric;
@@ -46,6 +47,8 @@ pub enum Material {
     Emitter(light::Emitter),
     /// `plasfunc`, `metfunc`, `transfunc`, `plasdata`, `metdata`, `transdata`.
     Function(function::FunctionMaterial),
+    /// `ashik2`.
+    Ashikhmin(ashikhmin::Ashikhmin),
     /// `BRTDfunc`; transparent (for ties) when a straight-through expression is not `0`.
     Brtd(brtd::Brtd, bool),
     /// `mixfunc`, `mixdata`, `mixpict` between materials.
@@ -106,6 +109,7 @@ impl Material {
             Material::Mixture(_) => Color::ZERO,
             Material::Function(f) => f.color,
             Material::Brtd(b, _) => b.front_diffuse,
+            Material::Ashikhmin(a) => a.color,
         }
     }
 }
