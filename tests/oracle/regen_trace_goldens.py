@@ -332,9 +332,6 @@ def cases():
     an_view += box_rays(rng, 20, [-1, -3, .3], [0, -2.5, 1], toward=[-1.5, -1.5, .5], spread=.4)
     case("aniso_functions-view", "aniso_functions.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
     case("aniso_patterns-view", "aniso_patterns.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
-    case("ashik-view", "ashik.rad", ["-av", ".05", ".05", ".05"], an_view, "-ovL")
-    case("ashik-irradiance", "ashik.rad", ["-I"],
-         irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
     case("aniso_patterns-irradiance", "aniso_patterns.rad", ["-I"],
          irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
     mp_view = box_rays(rng, 40, [-2, -2, .5], [2, 0, 2.5], toward=[0, 3, 1.5], spread=2)
@@ -358,6 +355,13 @@ def cases():
     case("dielectric_patterns-view", "dielectric_patterns.rad", ["-av", ".05", ".05", ".05"], dp_view, "-ovL")
     case("dielectric_patterns-irradiance", "dielectric_patterns.rad", ["-I"],
          irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
+    # ashik2 looks where the anisotropic scenes look.
+    as_view = box_rays(rng, 60, [-3, -3, 1], [3, 3, 3], toward=[0, 0, 0], spread=2)
+    as_view += box_rays(rng, 20, [-1, -2, .5], [1, 0, 1.5], toward=[0, 1, 1], spread=.8)
+    as_view += box_rays(rng, 20, [-1, -3, .3], [0, -2.5, 1], toward=[-1.5, -1.5, .5], spread=.4)
+    case("ashik-view", "ashik.rad", ["-av", ".05", ".05", ".05"], as_view, "-ovL")
+    case("ashik-irradiance", "ashik.rad", ["-I"],
+         irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
     return out
 
 
