@@ -352,8 +352,11 @@ def cases():
     dp_view = box_rays(rng, 40, [-3, -3, .5], [0, -1, 2.2], toward=[-1.5, 0, 1], spread=.8)
     dp_view += box_rays(rng, 40, [0, -3, 1], [3, -1, 2.5], toward=[1.5, 0, .5], spread=1.5)
     dp_view += box_rays(rng, 30, [0, -1, 1], [3, 1, 2.5], toward=[1.5, 1.5, 1.5], spread=.6)
-    case("dielectric_patterns-view", "dielectric_patterns.rad", ["-av", ".05", ".05", ".05"], dp_view, "-ovL")
-    case("dielectric_patterns-irradiance", "dielectric_patterns.rad", ["-I"],
+    # A positive -lr: rays below -lw are dropped, not played at Russian roulette (random
+    # in Radiance), which absorbing patterned media reach after a few internal bounces.
+    case("dielectric_patterns-view", "dielectric_patterns.rad", ["-av", ".05", ".05", ".05", "-lr", "12"],
+         dp_view, "-ovL")
+    case("dielectric_patterns-irradiance", "dielectric_patterns.rad", ["-I", "-lr", "12"],
          irradiance_points(rng, 40, [-3.9, -3.9, 0], [3.9, 3.9, 0], [(0, 0, 1)]))
     # ashik2 looks where the anisotropic scenes look.
     as_view = box_rays(rng, 60, [-3, -3, 1], [3, 3, 3], toward=[0, 0, 0], spread=2)
