@@ -60,7 +60,17 @@ fn write_item(out: &mut String, text: &str, item: &Item) {
             let words = [a.modifier.span, a.keyword, a.name.span, a.target.span];
             out.push_str(&join(&words.map(src)));
         }
-        Item::Command(c) => out.push_str(src(c.span)),
+        Item::Command(c) => {
+            // A command ending in a continuation goes on to its next line, blank or
+            // not: trimming that away would join what follows to the command.
+            let raw = text.get(c.span.range()).unwrap_or("");
+            let trimmed = raw.trim_end();
+            if trimmed.ends_with('\\') {
+                out.push_str(raw.strip_suffix('\n').unwrap_or(raw));
+            } else {
+                out.push_str(trimmed);
+            }
+        }
         Item::Comment(s) | Item::Error(s) => out.push_str(src(*s)),
     }
 }
