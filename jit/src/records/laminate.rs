@@ -95,4 +95,20 @@ mod tests {
         assert_eq!(String::from_utf8_lossy(&out), "xy p q\nzw r s\n");
         assert!(early);
     }
+
+    proptest::proptest! {
+        /// Any inputs laminated as lines, multi-line records or binary: no panic.
+        #[test]
+        fn any_inputs_are_laminated(
+            a in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..200),
+            b in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..200),
+            size in -3i64..5,
+        ) {
+            let a: &'static [u8] = Box::leak(a.into_boxed_slice());
+            let b: &'static [u8] = Box::leak(b.into_boxed_slice());
+            let mut inputs = [input(a, "\t", 0), input(b, ",", size)];
+            let mut out = Vec::new();
+            let _ = laminate(&mut inputs, &mut out, 0, false);
+        }
+    }
 }

@@ -334,4 +334,30 @@ mod tests {
         // The newline ending a record is taken for the blank terminator.
         assert_eq!(String::from_utf8_lossy(&b.0.borrow()), "2 3 \n5 6 \n");
     }
+
+    proptest::proptest! {
+        /// Any input split among a text and a binary output: no panic.
+        #[test]
+        fn any_input_is_split(
+            data in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400),
+            header in proptest::prelude::any::<bool>(),
+        ) {
+            let (a, b) = (Shared::default(), Shared::default());
+            let line = |f: &str, _: Option<u64>, _: usize| format!("FORMAT={f}\n");
+            let mut binary = text_output(1, b' ', &b);
+            binary.bytes = 4;
+            binary.header = header;
+            let mut s = Split {
+                outputs: vec![text_output(2, b',', &a), binary],
+                read_header: header,
+                read_resolution: false,
+                resolution: (0, 0),
+                records: 0,
+                command_line: String::new(),
+                format_line: &line,
+            };
+            let mut input: &[u8] = &data;
+            let _ = split(&mut s, &mut input, &mut |_| {});
+        }
+    }
 }

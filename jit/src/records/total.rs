@@ -320,4 +320,24 @@ mod tests {
         };
         assert_eq!(run(&running, data), "3\n10\n15\n");
     }
+
+    proptest::proptest! {
+        /// Any bytes, as text or binary records, give results and no panic.
+        #[test]
+        fn any_input_is_reduced(
+            data in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400),
+            kind in 0usize..3,
+            count in 0usize..4,
+        ) {
+            let o = TotalOptions {
+                input: [Numbers::Text, Numbers::Double(2), Numbers::Float(3)][kind],
+                count,
+                running: count % 2 == 1,
+                reduce: [Reduce::Add, Reduce::Multiply, Reduce::Max][kind],
+                ..TotalOptions::default()
+            };
+            let mut out = Vec::new();
+            total(&o, &data, &mut out, &mut 0);
+        }
+    }
 }

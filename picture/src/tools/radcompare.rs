@@ -783,4 +783,27 @@ mod tests {
             v.report
         );
     }
+
+    proptest::proptest! {
+        /// Any two inputs get a verdict, never a panic: headers cut anywhere, binary
+        /// junk, pictures with damaged scanlines.
+        #[test]
+        fn any_inputs_get_a_verdict(
+            a in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..300),
+            b in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..300),
+            head in 0usize..4,
+        ) {
+            let heads: [&[u8]; 4] = [
+                b"",
+                b"#?RADIANCE\nFORMAT=ascii\n\n",
+                b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 3\n",
+                b"#?RADIANCE\nFORMAT=float\nBigEndian=1\n\n",
+            ];
+            let (mut x, mut y) = (heads[head].to_vec(), heads[head].to_vec());
+            x.extend_from_slice(&a);
+            y.extend_from_slice(&b);
+            let v = run(&x, &y);
+            proptest::prop_assert!(v.status <= 2);
+        }
+    }
 }
