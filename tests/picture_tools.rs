@@ -96,7 +96,6 @@ fn unsupported_options_and_damage_are_clear_errors() {
         &[
             "pvalue", "-r", "-p", ".64", ".33", ".29", ".6", ".15", ".06", ".333", ".333",
         ],
-        &["getinfo", "-r", "VIEW"],
         &["ra_rgbe", "wide.hdr", "!cat"],
         &["ra_ppm", "-s", "1000", "wide.hdr"],
         &["pfilt", "-n", "8", "wide.hdr"],

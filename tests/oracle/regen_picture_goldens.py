@@ -161,7 +161,7 @@ def cases():
           ["pvalue", "-r", "-db", "radc.byte"], ["pvalue", "-r", "-h", "-H", "-dd", "-b", "-y", "9", "+x", "12",
                                                  "small-bright.double"],
           ["pvalue", "-r", "-u", "wide.txt"], ["pvalue", "-r", "-e", "-1", "wide.txt"]]
-    return [(x, None) for x in c] + STDIN_CASES + pfilt_cases()
+    return [(x, None) for x in c] + STDIN_CASES + pfilt_cases() + getinfo_r_cases()
 
 
 def pfilt_cases():
@@ -297,6 +297,14 @@ def main():
         open(cases_path, "w").write(text)
         open(colorpict_path, "w").write(colorpict)
         print(f"wrote {len(listed)} picture cases")
+
+
+def getinfo_r_cases():
+    """getinfo -r, after the others so adding them kept the earlier numbering."""
+    args = [["VIEW"], ["VIEW", "SOFTWARE=x"], ["EXPOSURE=2"], ["COLORCORR= 1 1 1"], [" PIXASPECT"],
+            ["VIEW= -vh 20"], ["FORMAT"], ["VIE"], ["NOPE= 1"]]
+    return [(["getinfo", "-r"] + a, p) for a in args for p in ("exposed.hdr", "wide.hdr")] + \
+        [(["getinfo", "-r", "VIEW"], "not-a-picture.hdr")]
 
 
 if __name__ == "__main__":

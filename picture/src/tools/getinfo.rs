@@ -140,3 +140,90 @@ pub fn add_lines(
     out.extend_from_slice(&data[end..]);
     Ok(out)
 }
+
+/// getinfo.c `adjheadline`: whether header line `line` sets the variable `arg` names
+/// (`VAR`, `VAR=...`, `VAR value`, leading blanks matched), so `-r` removes it.
+fn names_line(line: &[u8], arg: &[u8]) -> bool {
+    let space = |c: Option<&u8>| c.is_some_and(|&c| radc_lang::c_number::is_c_space(c));
+    let (mut i, mut j) = (0usize, 0usize);
+    if space(arg.first()) {
+        if !space(line.first()) {
+            return false;
+        }
+        i += 1;
+        while space(line.get(i)) {
+            i += 1;
+        }
+        j += 1;
+        while space(arg.get(j)) {
+            j += 1;
+        }
+    }
+    let start = i;
+    while j < arg.len() && line.get(i) == arg.get(j) {
+        if line.get(i) == Some(&b'=') && i > 0 {
+            return true;
+        }
+        if space(arg.get(j)) {
+            break;
+        }
+        i += 1;
+        j += 1;
+    }
+    if i == start && start == 0 {
+        return false;
+    }
+    if line.get(i) == Some(&b'=') && j >= arg.len() {
+        return true;
+    }
+    space(line.get(i)) && space(arg.get(j))
+}
+
+/// `getinfo -r VAR...`: the header of `data` without the lines the arguments name, then
+/// the arguments that set a value (`VAR=value`, `VAR value`) as new lines, the format
+/// line and the data; `output_start` as in [`super::Run`].
+pub fn replace_lines(
+    data: &[u8],
+    args: &[String],
+    output_start: Option<u64>,
+) -> Result<Vec<u8>, String> {
+    let (header, end) = Header::parse(data).map_err(|_| "Bad header!".to_string())?;
+    let mut out = Vec::new();
+    let mut format = None;
+    for l in &header.lines {
+        if let Some(f) = l.format() {
+            format = Some(f);
+            continue;
+        }
+        if !args.iter().any(|a| names_line(&l.0, a.as_bytes())) {
+            out.extend_from_slice(&l.0);
+        }
+    }
+    for a in args {
+        let b = a.as_bytes();
+        let start = b
+            .iter()
+            .position(|&c| !radc_lang::c_number::is_c_space(c))
+            .unwrap_or(b.len());
+        if start == b.len() {
+            continue;
+        }
+        let len = b.len()
+            - b.iter()
+                .rev()
+                .take_while(|&&c| radc_lang::c_number::is_c_space(c))
+                .count();
+        let sets = (start + 1..len.saturating_sub(1))
+            .any(|k| b[k] == b'=' || radc_lang::c_number::is_c_space(b[k]));
+        if sets {
+            out.extend_from_slice(&b[..len]);
+            out.push(b'\n');
+        }
+    }
+    if let Some(f) = format {
+        out.extend_from_slice(format_line(&f, output_start, out.len()).as_bytes());
+    }
+    out.push(b'\n');
+    out.extend_from_slice(&data[end..]);
+    Ok(out)
+}

@@ -1,7 +1,8 @@
 //! `radc getinfo`: Radiance's getinfo. Prints the information header of each file
 //! (`file:` then each line after a tab), `-d` the resolution line instead (`+d` both),
 //! `-` copies standard input without its header (`-d -`: without its resolution line
-//! too), `-a line...` adds lines to the header of standard input, `-c command...` runs a
+//! too), `-a line...` adds lines to the header of standard input, `-r var...` removes
+//! the lines setting them (adding those given values), `-c command...` runs a
 //! command on the data after the header and writes the header with the command added.
 //! Works on any Radiance file (pictures, octrees, matrices), as getinfo does.
 use super::{FAILURE, fail, format_line, read_input, stdout_position, words_line, write_stdout};
@@ -19,10 +20,7 @@ pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {
         Some("-c") if args.len() > 1 => run_command(dim, &args[1..]),
         Some("-a") if args.len() > 1 => add_lines(&args[1..]),
-        Some("-r") if args.len() > 1 => fail(
-            NAME,
-            "-r (removing header lines) is not supported by radc getinfo",
-        ),
+        Some("-r") if args.len() > 1 => replace_lines(&args[1..]),
         Some("-") if args.len() == 1 => strip_header(dim),
         None => standard_input(dim),
         Some(_) => files(dim, args),
@@ -82,6 +80,22 @@ fn add_lines(lines: &[String]) -> ExitCode {
     match getinfo::add_lines(&data, lines, stdout_position()) {
         Ok(out) => finish(write_stdout(NAME, &out)),
         Err(e) => fail(NAME, e),
+    }
+}
+
+/// `getinfo -r VAR...`: standard input with the named header lines removed and the
+/// arguments that set values added.
+fn replace_lines(args: &[String]) -> ExitCode {
+    let data = match read_input(None) {
+        Ok(d) => d,
+        Err(e) => return fail(NAME, e),
+    };
+    match getinfo::replace_lines(&data, args, stdout_position()) {
+        Ok(out) => finish(write_stdout(NAME, &out)),
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::from(FAILURE)
+        }
     }
 }
 
