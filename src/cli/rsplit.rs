@@ -14,6 +14,20 @@ use super::picture_tools::stdout_position;
 
 const NAME: &str = "rsplit";
 
+/// Standard output, buffered once and shared by every `-` output, so their fields stay
+/// in order (a `Stdout` handle each would flush at every newline).
+#[derive(Clone)]
+struct SharedStdout(std::rc::Rc<std::cell::RefCell<std::io::BufWriter<std::io::Stdout>>>);
+
+impl Write for SharedStdout {
+    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+        self.0.borrow_mut().write(b)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.0.borrow_mut().flush()
+    }
+}
+
 pub fn run(args: &[String]) -> ExitCode {
     let (allow, args) = match args.first().map(String::as_str) {
         Some("--allow-commands") => (true, &args[1..]),
@@ -30,6 +44,9 @@ pub fn run(args: &[String]) -> ExitCode {
     let (mut components, mut bytes, mut format) = (1usize, 0usize, "ascii");
     let (mut header, mut resolution) = (false, false);
     let mut stdout_used = false;
+    let stdout = SharedStdout(std::rc::Rc::new(std::cell::RefCell::new(
+        std::io::BufWriter::new(std::io::stdout()),
+    )));
     let mut outputs: Vec<SplitOutput> = Vec::new();
     let mut names: Vec<&str> = Vec::new();
     let mut children: Vec<Child> = Vec::new();
@@ -113,7 +130,7 @@ pub fn run(args: &[String]) -> ExitCode {
                     };
                     let start = if stdout_used { None } else { stdout_position() };
                     stdout_used = true;
-                    outputs.push(new(Some(Box::new(std::io::stdout())), flags, true, start));
+                    outputs.push(new(Some(Box::new(stdout.clone())), flags, true, start));
                     names.push(a);
                 }
                 _ => return fail("bad option"),
