@@ -767,21 +767,8 @@ impl Compiler<'_> {
             }
         };
         let file = &strings[layout.file];
-        let Some(module) = self.ir.functions.0.get(file.as_str()) else {
-            self.unsupported(id, "its function file could not be loaded");
-            return None;
-        };
-        let program = self.functions.program(file, module);
-        let mut indices = Vec::new();
-        for e in &strings[layout.exprs.clone()] {
-            match self.functions.add_expression(program, e) {
-                Ok(k) => indices.push(k),
-                Err(why) => {
-                    self.refuse_with(id, why);
-                    return None;
-                }
-            }
-        }
+        let program = self.function_program(id, file, false)?;
+        let mut indices = self.expressions(id, program, &strings[layout.exprs.clone()])?;
         let kind = match self.pattern_kind(program, strings, layout.source) {
             Ok(kind) => kind,
             Err(why) => {
@@ -924,7 +911,7 @@ impl Compiler<'_> {
             None
         };
         let file_at = if data_form { 2 } else { 1 };
-        let program = self.material_program(id, &strings[file_at], true)?;
+        let program = self.function_program(id, &strings[file_at], true)?;
         use crate::procedural::brdf::{LIGHT_CHANNEL, VALUE_CHANNEL};
         let light: Vec<u32> = (0..4).map(|i| LIGHT_CHANNEL + i).collect();
         let dims = data.as_ref().map_or(0, |d| d.dimensions());
@@ -970,9 +957,9 @@ impl Compiler<'_> {
         })
     }
 
-    /// The program of a material's function file, refusing the material when the file
+    /// The program of a pattern's or material's function file, refusing it when the file
     /// could not be loaded; with m_brdf.c's shading variables bound when `shading`.
-    fn material_program(&mut self, id: PrimId, file: &str, shading: bool) -> Option<ProgramId> {
+    fn function_program(&mut self, id: PrimId, file: &str, shading: bool) -> Option<ProgramId> {
         let Some(module) = self.ir.functions.0.get(file) else {
             self.unsupported(id, "its function file could not be loaded");
             return None;
@@ -982,6 +969,27 @@ impl Compiler<'_> {
             self.functions.bind_shading_variables(program);
         }
         Some(program)
+    }
+
+    /// Each of `texts` parsed as an expression in `program`; `None` after refusing
+    /// primitive `id` for the first that cannot be.
+    fn expressions(
+        &mut self,
+        id: PrimId,
+        program: ProgramId,
+        texts: &[String],
+    ) -> Option<Vec<usize>> {
+        let mut out = Vec::with_capacity(texts.len());
+        for e in texts {
+            match self.functions.add_expression(program, e) {
+                Ok(k) => out.push(k),
+                Err(why) => {
+                    self.refuse_with(id, why);
+                    return None;
+                }
+            }
+        }
+        Some(out)
     }
 
     /// The frame a material's functions see (func.c `getfunc`'s `bxp`): the inverse
@@ -1042,17 +1050,8 @@ impl Compiler<'_> {
             self.unsupported(id, "bad # arguments");
             return None;
         }
-        let program = self.material_program(id, &strings[3], false)?;
-        let mut exprs = Vec::new();
-        for e in &strings[..3] {
-            match self.functions.add_expression(program, e) {
-                Ok(k) => exprs.push(k),
-                Err(why) => {
-                    self.refuse_with(id, why);
-                    return None;
-                }
-            }
-        }
+        let program = self.function_program(id, &strings[3], false)?;
+        let exprs = self.expressions(id, program, &strings[..3])?;
         let inverse = self.function_frame(id, &strings[4..])?;
         let pattern =
             self.material_pattern(id, PatternKind::Orientation, program, exprs, reals, inverse);
@@ -1072,17 +1071,8 @@ impl Compiler<'_> {
             self.unsupported(id, "bad # arguments");
             return None;
         }
-        let program = self.material_program(id, &strings[9], true)?;
-        let mut exprs = Vec::new();
-        for e in &strings[..6] {
-            match self.functions.add_expression(program, e) {
-                Ok(k) => exprs.push(k),
-                Err(why) => {
-                    self.refuse_with(id, why);
-                    return None;
-                }
-            }
-        }
+        let program = self.function_program(id, &strings[9], true)?;
+        let exprs = self.expressions(id, program, &strings[..6])?;
         let light: Vec<u32> = (0..4).map(|i| LIGHT_CHANNEL + i).collect();
         let mut directional = [Directional::Zero; 3];
         for i in 0..3 {

@@ -18,6 +18,7 @@ use radc_lang::datafile::DataFile;
 
 use super::channels::{Channels, RayView};
 use super::data::DATA_CHANNEL;
+use super::pattern::{Pattern, PatternKind};
 use super::{Functions, ProgramId, RayInput};
 use crate::math::{Color, Vec3};
 
@@ -79,36 +80,83 @@ fn extra(
     ]
 }
 
-impl BrtdLookup {
-    /// The directional part's colour for light from `dir` of solid angle `omega`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn directional(
+impl Pattern {
+    /// The channels and inputs a material's functions read at a hit: the ray's in the
+    /// pattern's frame, the light (if any) and the shading variables after them.
+    fn material_input(
+        &self,
+        ray: &RayView,
+        shade: &ShadeState,
+        light: Option<(Vec3, f64)>,
+    ) -> (Channels, [f64; 12]) {
+        (
+            Channels::new(ray, &self.inverse),
+            extra(&self.inverse, shade, light),
+        )
+    }
+
+    /// A function or data material's function for light from `dir` (world) of solid
+    /// angle `omega`; `None` on a compute error, or when this is no such pattern.
+    pub fn brdf(
         &self,
         functions: &Functions,
-        pattern: u32,
-        program: ProgramId,
+        index: u32,
         ray: &RayView,
-        inverse: &radc_lang::transform::Transform,
-        args: &[f64],
+        shade: &ShadeState,
+        dir: Vec3,
+        omega: f64,
+    ) -> Option<f64> {
+        let PatternKind::Brdf(b) = &self.kind else {
+            return None;
+        };
+        let (channels, mut extra) = self.material_input(ray, shade, Some((dir, omega)));
+        if let Some(d) = &b.data {
+            let mut pt = vec![0.0; self.exprs.len()];
+            let mut input = RayInput {
+                channels: &channels,
+                args: &self.args,
+                data: &extra,
+            };
+            functions.eval(index, self.program, &self.exprs, &mut input, &mut pt)?;
+            extra[4] = d.eval(&pt);
+        }
+        let mut input = RayInput {
+            channels: &channels,
+            args: &self.args,
+            data: &extra,
+        };
+        let mut v = [0.0];
+        functions.eval(index, self.program, &[b.value], &mut input, &mut v)?;
+        Some(v[0])
+    }
+
+    /// A BRTDfunc's directional colour for light from `dir` of solid angle `omega`.
+    pub fn brtd_directional(
+        &self,
+        functions: &Functions,
+        index: u32,
+        ray: &RayView,
         shade: &ShadeState,
         dir: Vec3,
         omega: f64,
     ) -> Option<Color> {
-        let channels = Channels::new(ray, inverse);
-        let extra = extra(inverse, shade, Some((dir, omega)));
+        let PatternKind::Brtd(b) = &self.kind else {
+            return None;
+        };
+        let (channels, extra) = self.material_input(ray, shade, Some((dir, omega)));
         let mut input = RayInput {
             channels: &channels,
-            args,
+            args: &self.args,
             data: &extra,
         };
         let mut c = [0.0; 3];
         for i in 0..3 {
-            c[i] = match self.directional[i] {
+            c[i] = match b.directional[i] {
                 Directional::Zero => 0.0,
                 Directional::SameAs(j) => c[j],
                 Directional::Call(k) => {
                     let mut v = [0.0];
-                    functions.eval(pattern, program, &[k], &mut input, &mut v)?;
+                    functions.eval(index, self.program, &[k], &mut input, &mut v)?;
                     v[0]
                 }
             };
@@ -116,71 +164,29 @@ impl BrtdLookup {
         Some(Color::new(c[0], c[1], c[2]))
     }
 
-    /// The mirror ray's (`which` 0) or the straight ray's (1) colour: three of the six
-    /// expressions `exprs`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn coefficient(
+    /// A BRTDfunc's mirror (`which` 0) or straight-through (1) colour: three of its six
+    /// expressions.
+    pub fn brtd_coefficient(
+        &self,
         functions: &Functions,
-        pattern: u32,
-        program: ProgramId,
-        exprs: &[usize],
+        index: u32,
         ray: &RayView,
-        inverse: &radc_lang::transform::Transform,
-        args: &[f64],
         shade: &ShadeState,
         which: usize,
     ) -> Option<Color> {
-        let channels = Channels::new(ray, inverse);
-        let extra = extra(inverse, shade, None);
+        if !matches!(self.kind, PatternKind::Brtd(_)) {
+            return None;
+        }
+        let (channels, extra) = self.material_input(ray, shade, None);
         let mut input = RayInput {
             channels: &channels,
-            args,
+            args: &self.args,
             data: &extra,
         };
         let mut v = [0.0; 3];
-        let three = exprs.get(3 * which..3 * which + 3)?;
-        functions.eval(pattern, program, three, &mut input, &mut v)?;
+        let three = self.exprs.get(3 * which..3 * which + 3)?;
+        functions.eval(index, self.program, three, &mut input, &mut v)?;
         Some(Color::new(v[0], v[1], v[2]))
-    }
-}
-
-impl BrdfLookup {
-    /// The function's value for light from `dir` (world) of solid angle `omega`;
-    /// `None` on a compute error.
-    #[allow(clippy::too_many_arguments)]
-    pub fn value(
-        &self,
-        functions: &Functions,
-        pattern: u32,
-        program: ProgramId,
-        coords: &[usize],
-        ray: &RayView,
-        inverse: &radc_lang::transform::Transform,
-        args: &[f64],
-        shade: &ShadeState,
-        dir: Vec3,
-        omega: f64,
-    ) -> Option<f64> {
-        let channels = Channels::new(ray, inverse);
-        let mut extra = extra(inverse, shade, Some((dir, omega)));
-        if let Some(d) = &self.data {
-            let mut pt = vec![0.0; coords.len()];
-            let mut input = RayInput {
-                channels: &channels,
-                args,
-                data: &extra,
-            };
-            functions.eval(pattern, program, coords, &mut input, &mut pt)?;
-            extra[4] = d.eval(&pt);
-        }
-        let mut input = RayInput {
-            channels: &channels,
-            args,
-            data: &extra,
-        };
-        let mut v = [0.0];
-        functions.eval(pattern, program, &[self.value], &mut input, &mut v)?;
-        Some(v[0])
     }
 }
 

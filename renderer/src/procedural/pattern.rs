@@ -9,7 +9,7 @@
 
 use radc_lang::transform::Transform;
 
-use super::brdf::{BrdfLookup, BrtdLookup, ShadeState};
+use super::brdf::{BrdfLookup, BrtdLookup};
 use super::channels::{Channels, RayView};
 use super::data::DataLookup;
 use super::picture::PictureLookup;
@@ -128,85 +128,6 @@ impl Pattern {
             Some(xf) => xf.vector(v),
             None => v,
         })
-    }
-
-    /// A BRTDfunc's directional colour for light from `dir` of solid angle `omega`.
-    pub fn brtd_directional(
-        &self,
-        functions: &Functions,
-        index: u32,
-        ray: &RayView,
-        shade: &ShadeState,
-        dir: Vec3,
-        omega: f64,
-    ) -> Option<Color> {
-        let PatternKind::Brtd(b) = &self.kind else {
-            return None;
-        };
-        b.directional(
-            functions,
-            index,
-            self.program,
-            ray,
-            &self.inverse,
-            &self.args,
-            shade,
-            dir,
-            omega,
-        )
-    }
-
-    /// A BRTDfunc's mirror (`which` 0) or straight-through (1) colour.
-    pub fn brtd_coefficient(
-        &self,
-        functions: &Functions,
-        index: u32,
-        ray: &RayView,
-        shade: &ShadeState,
-        which: usize,
-    ) -> Option<Color> {
-        if !matches!(self.kind, PatternKind::Brtd(_)) {
-            return None;
-        }
-        BrtdLookup::coefficient(
-            functions,
-            index,
-            self.program,
-            &self.exprs,
-            ray,
-            &self.inverse,
-            &self.args,
-            shade,
-            which,
-        )
-    }
-
-    /// A function or data material's function for light from `dir` of solid angle
-    /// `omega` (`None`: a compute error, or not such a pattern).
-    pub fn brdf(
-        &self,
-        functions: &Functions,
-        index: u32,
-        ray: &RayView,
-        shade: &ShadeState,
-        dir: Vec3,
-        omega: f64,
-    ) -> Option<f64> {
-        let PatternKind::Brdf(b) = &self.kind else {
-            return None;
-        };
-        b.value(
-            functions,
-            index,
-            self.program,
-            &self.exprs,
-            ray,
-            &self.inverse,
-            &self.args,
-            shade,
-            dir,
-            omega,
-        )
     }
 
     /// A mixture's coefficient for the ray, before bounding (`None`: a compute error,
