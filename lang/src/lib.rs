@@ -6,6 +6,7 @@
 
 pub mod c_number;
 pub mod cal;
+pub mod compiled;
 pub mod datafile;
 pub mod db;
 pub mod diagnostic;
