@@ -98,7 +98,7 @@ impl FileLookup for SceneFiles<'_> {
             return Some(text.bytes().take(max).collect());
         }
         let file = std::fs::File::open(self.find(name, from)?).ok()?;
-        let mut head = Vec::with_capacity(max);
+        let mut head = Vec::with_capacity(max.min(1 << 16));
         file.take(max as u64).read_to_end(&mut head).ok()?;
         Some(head)
     }

@@ -119,7 +119,7 @@ impl AuxFiles for DiskAuxFiles {
             Found::Builtin(text) => return Some(text.bytes().take(max).collect()),
         };
         let file = std::fs::File::open(path).ok()?;
-        let mut head = Vec::with_capacity(max);
+        let mut head = Vec::with_capacity(max.min(1 << 16));
         file.take(max as u64).read_to_end(&mut head).ok()?;
         Some(head)
     }

@@ -31,4 +31,7 @@ pub struct ShapeHit {
     pub t: f64,
     pub normal: Vec3,
     pub rod: f64,
+    /// Which part of the shape: a mesh's triangle (its slot in the mesh's tree); 0 for
+    /// the other shapes.
+    pub sub: u32,
 }

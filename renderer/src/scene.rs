@@ -34,7 +34,7 @@ use crate::procedural::{
     DataLookup, DataSource, Engine, Functions, MixSource, Pattern, PatternKind, PictureLookup,
     ProgramId,
 };
-use crate::shapes::{Cone, Polygon, Ring, Shape, Sphere};
+use crate::shapes::{Cone, MeshGeometry, MeshShape, Polygon, Ring, Shape, Sphere};
 use crate::surfaces::Surfaces;
 
 /// A surface.
@@ -51,6 +51,10 @@ pub struct Object {
     pub modifier: i64,
     pub modifier_name: String,
     pub material_name: String,
+    /// For a mesh with a `void` modifier: per material of its file, that material
+    /// compiled (in the mesh's frame); empty for everything else.
+    #[serde(default)]
+    pub triangle_materials: Vec<Option<MaterialId>>,
 }
 
 /// What tracing and shading read of a hit object, 16 bytes each apart from the
@@ -62,6 +66,8 @@ pub struct HitInfo {
     /// The material's index, `u32::MAX` for none.
     material: u32,
     pub flat: bool,
+    /// A mesh: shading asks its triangle for the material, normal and (u,v).
+    pub mesh: bool,
 }
 
 impl HitInfo {
@@ -70,6 +76,7 @@ impl HitInfo {
             modifier: o.modifier,
             material: o.material.map_or(u32::MAX, |m| m.0),
             flat: o.shape.is_flat(),
+            mesh: matches!(o.shape, Shape::Mesh(_)),
         }
     }
 
@@ -191,6 +198,29 @@ struct Compiler<'a> {
     surface_chains: std::collections::HashMap<PrimId, (Option<MaterialId>, String)>,
     /// Mixtures of patterns compiled: pattern index, and whether a side has a texture.
     mixtures: std::collections::HashMap<PrimId, (u32, bool)>,
+    /// Mesh files' geometry, built once per file.
+    meshes: std::collections::HashMap<String, std::sync::Arc<MeshGeometry>>,
+}
+
+/// A mesh's placement (Radiance's `FULLXF`, both scales made positive as
+/// `getmeshinst` makes them).
+struct Frame {
+    forward: radc_lang::transform::Transform,
+    backward: radc_lang::transform::Transform,
+}
+
+impl Frame {
+    fn of(words: &[String]) -> Option<Frame> {
+        let words: Vec<(&str, radc_lang::Span)> = words
+            .iter()
+            .map(|w| (w.as_str(), radc_lang::Span::default()))
+            .collect();
+        let mut forward = radc_lang::transform::Transform::parse(&words).ok()?;
+        let mut backward = radc_lang::transform::Transform::parse_inverse(&words).ok()?;
+        forward.scale = forward.scale.abs();
+        backward.scale = backward.scale.abs();
+        Some(Frame { forward, backward })
+    }
 }
 
 /// Why radc refuses a modifier of this category where it sits: the renderer does not
@@ -221,6 +251,7 @@ impl<'a> Compiler<'a> {
             material_patterns: Vec::new(),
             surface_chains: std::collections::HashMap::new(),
             mixtures: std::collections::HashMap::new(),
+            meshes: std::collections::HashMap::new(),
         }
     }
 
@@ -467,8 +498,13 @@ impl Compiler<'_> {
                 self.distant_source(id, p, vec3(*direction), *angle);
                 return;
             }
-            PrimKind::Instance { .. } | PrimKind::Mesh { .. } => {
-                return self.unsupported(id, "instances and meshes are not rendered yet");
+            PrimKind::Mesh {
+                file,
+                transform,
+                materials,
+            } => return self.mesh(id, p, file, transform, materials),
+            PrimKind::Instance { .. } => {
+                return self.unsupported(id, "instances are not rendered yet");
             }
             _ => return,
         };
@@ -486,6 +522,49 @@ impl Compiler<'_> {
             },
             modifier_name: self.modifier_name(p.modifier),
             material_name,
+            triangle_materials: Vec::new(),
+        });
+    }
+
+    /// A `mesh`: its file's geometry (one tree per file, shared), its placement, and
+    /// its materials: the modifier's, or with `void` the file's own per triangle.
+    fn mesh(
+        &mut self,
+        id: PrimId,
+        p: &ir::Prim,
+        file: &str,
+        words: &[String],
+        materials: &[PrimId],
+    ) {
+        let Some(data) = self.ir.data.meshes.get(file) else {
+            return self.refuse_with(id, format!("its mesh file '{file}' could not be loaded"));
+        };
+        let geometry = self
+            .meshes
+            .entry(file.to_string())
+            .or_insert_with(|| std::sync::Arc::new(MeshGeometry::new(data.clone())))
+            .clone();
+        let Some(frame) = Frame::of(words) else {
+            return self.unsupported(id, "bad transform");
+        };
+        let shape = Shape::Mesh(MeshShape::new(geometry, frame.forward, frame.backward));
+        let (material, material_name) = self.material_of(p.modifier);
+        let triangle_materials = materials
+            .iter()
+            .map(|&m| self.material_of(ModRef::Prim(m)).0)
+            .collect();
+        self.scene.objects.push(Object {
+            prim: id,
+            name: p.name.clone(),
+            shape,
+            material,
+            modifier: match p.modifier {
+                ModRef::Prim(m) => i64::from(m.0),
+                _ => -1,
+            },
+            modifier_name: self.modifier_name(p.modifier),
+            material_name,
+            triangle_materials,
         });
     }
 
@@ -791,6 +870,18 @@ impl Compiler<'_> {
             return None;
         };
         inverse.scale = inverse.scale.abs();
+        let mut forward = (p.transform != radc_lang::transform::Transform::IDENTITY)
+            .then_some(p.transform)
+            .map(|mut f| {
+                f.scale = f.scale.abs();
+                f
+            });
+        let inverse = self.in_frame(id, inverse);
+        if let Some(frame) = self.frame_of(id) {
+            // A texture's displacement turns with its own transform, then the mesh's
+            // (t_func.c, t_data.c).
+            forward = Some(forward.map_or(frame.forward, |f| f.then(&frame.forward)));
+        }
         let index = self.functions.patterns.len() as u32;
         self.functions.patterns.push(Pattern {
             who: format!("{} '{}'", p.schema.name, p.name),
@@ -799,8 +890,7 @@ impl Compiler<'_> {
             exprs: indices,
             args: reals.clone(),
             inverse,
-            forward: (p.transform != radc_lang::transform::Transform::IDENTITY)
-                .then_some(p.transform),
+            forward,
         });
         self.pattern_of_prim.insert(id, index);
         Some(index)
@@ -1008,7 +1098,30 @@ impl Compiler<'_> {
             return None;
         };
         inverse.scale = inverse.scale.abs();
-        Some(inverse)
+        Some(self.in_frame(id, inverse))
+    }
+
+    /// The placement of the mesh whose frame `id`'s functions are evaluated in, when
+    /// `id` is a material read from a mesh file.
+    fn frame_of(&self, id: PrimId) -> Option<Frame> {
+        let mesh = self.ir.get(id)?.frame?;
+        match &self.ir.get(mesh)?.kind {
+            PrimKind::Mesh { transform, .. } => Frame::of(transform),
+            _ => None,
+        }
+    }
+
+    /// func.c's `setfunc` with `rox`: coordinates go into the mesh's frame first
+    /// (`multmat4(funcxf, rox->b, bxp)`), then into the primitive's own.
+    fn in_frame(
+        &self,
+        id: PrimId,
+        inverse: radc_lang::transform::Transform,
+    ) -> radc_lang::transform::Transform {
+        match self.frame_of(id) {
+            Some(frame) => frame.backward.then(&inverse),
+            None => inverse,
+        }
     }
 
     /// Adds the pattern a function material evaluates; its index.
@@ -1810,6 +1923,7 @@ pub(crate) mod tests {
                 modifier: modifier.map_or(ModRef::Void, |m| ModRef::Prim(PrimId(m))),
                 refs: Vec::new(),
                 transform: radc_lang::transform::Transform::IDENTITY,
+                frame: None,
                 kind,
                 span,
             });

@@ -365,7 +365,43 @@ def cases():
     case("ashik-view", "ashik.rad", ["-av", ".05", ".05", ".05"], as_view, "-ovL")
     case("ashik-irradiance", "ashik.rad", ["-I"],
          irradiance_points(rng, 30, [-2.9, -2.9, 0], [2.9, 2.9, 0], [(0, 0, 1)]))
+    # Meshes: Radiance's obj2mesh files (make_meshes), smoothed and uv-mapped, with
+    # their own materials and the scene's, patterns on (u,v), textures on smoothed
+    # normals, transforms; rays also aimed at the closed box's edges and corners.
+    me_view = box_rays(rng, 120, [-4.5, -4, 3], [3.5, 2.5, 4.5], toward=[-.5, -.5, -.5], spread=3)
+    me_view += box_rays(rng, 40, [-4, -4, 1], [-2, -1, 2], toward=[-3, -2, -.4], spread=.8)
+    me_view += box_edge_rays(rng, 40)
+    case("meshes-view", "meshes.rad", ["-av", ".05", ".05", ".05"], me_view, "-ovnNpcL")
+    case("meshes-irradiance", "meshes.rad", ["-I"],
+         irradiance_points(rng, 40, [-4.5, -4.5, -1], [3.5, 3.5, -1], [(0, 0, 1)]))
     return out
+
+
+def box_edge_rays(rng, n):
+    """Rays from above aimed at points on the edges and at the corners of meshes.rad's
+    box (box.rtm placed with -rz 35 -s 1.2 -t -3 -2.5 -1)."""
+    c, s = math.cos(math.radians(35)), math.sin(math.radians(35))
+
+    def place(p):
+        x, y, z = p
+        return [1.2 * (c * x - s * y) - 3, 1.2 * (s * x + c * y) - 2.5, 1.2 * z - 1]
+
+    edges = [((0, 0, 1), (1, 0, 1)), ((1, 0, 1), (1, 1, 1)), ((1, 1, 1), (0, 1, 1)),
+             ((0, 1, 1), (0, 0, 1)), ((0, 0, 1), (1, 1, 1)), ((1, 0, 0), (1, 0, 1))]
+    rays = []
+    for i in range(n):
+        a, b = edges[i % len(edges)]
+        f = 0.0 if i % 5 == 0 else rng.uniform(0, 1)
+        target = place([u + f * (v - u) for u, v in zip(a, b)])
+        o = [rng.uniform(-4, -2), rng.uniform(-3.5, -1.5), rng.uniform(1.5, 3)]
+        rays.append(o + [t - q for t, q in zip(target, o)])
+    return rays
+
+
+def make_meshes():
+    """The mesh files meshes.rad places, made by the oracle's obj2mesh."""
+    for obj, mats in (("ball", "ball_materials.rad"), ("box", "box_materials.rad")):
+        subprocess.run(["obj2mesh", "-a", mats, obj + ".obj", obj + ".rtm"], cwd=SCENES, check=True)
 
 
 def make_poster():
@@ -391,7 +427,8 @@ def fmt(rays):
 def run_case(c, workdir):
     octree = os.path.join(workdir, c["id"] + ".oct")
     with open(octree, "wb") as f:
-        subprocess.run(["oconv"] + [os.path.join(SCENES, s) for s in c["scenes"]], stdout=f, check=True)
+        # From the scenes' folder: mesh files are found there, as radc finds them.
+        subprocess.run(["oconv"] + c["scenes"], stdout=f, check=True, cwd=SCENES)
     p = subprocess.run(
         ["rtrace", "-h"] + c["options"] + [octree],
         input=fmt(c["rays"]),
@@ -424,6 +461,7 @@ def main():
     check = "--check" in sys.argv[1:]
     if not check:
         make_poster()
+        make_meshes()
     all_cases = cases()
     failed = []
     manifest = []

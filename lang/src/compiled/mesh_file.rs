@@ -397,14 +397,13 @@ pub fn encode_direction(dv: [f64; 3]) -> i32 {
     if cd[0] | cd[1] | cd[2] == 0 {
         return 0;
     }
-    let cm;
-    if cd[0] <= cd[1] {
+    let cm = if cd[0] <= cd[1] {
         dc |= 0o10 | cd[0] << 5;
-        cm = cd[1];
+        cd[1]
     } else {
         dc |= cd[1] << 5;
-        cm = cd[0];
-    }
+        cd[0]
+    };
     if cd[2] <= cm {
         dc |= 0o20 | cd[2] << 18;
     } else {
@@ -425,7 +424,7 @@ mod tests {
             [-0.267, 0.534, -0.802],
             [0.577, 0.577, 0.577],
         ] {
-            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) as f64;
+            let n: f64 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
             let v = v.map(|x: f64| x / n.sqrt());
             let back = decode_direction(encode_direction(v));
             let dot: f64 = (0..3).map(|i| v[i] * back[i]).sum();
@@ -439,13 +438,13 @@ mod tests {
 mod obj2mesh_files {
     use super::*;
 
-    /// `tests/data/mesh/ball.rtm`: Radiance's obj2mesh of `ball.obj` (a 12 x 24 sphere
-    /// with normals, uv and two materials from `mats.rad`).
+    /// `tests/data/trace/scenes/ball.rtm`: Radiance's obj2mesh of `ball.obj` (a 12 x 24 sphere
+    /// with normals, uv and two materials from `ball_materials.rad`).
     #[test]
     fn reads_a_mesh_radiance_wrote() {
         let bytes = std::fs::read(concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/../tests/data/mesh/ball.rtm"
+            "/../tests/data/trace/scenes/ball.rtm"
         ))
         .unwrap();
         let m = MeshFile::read(&bytes).unwrap();

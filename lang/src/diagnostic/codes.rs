@@ -41,6 +41,7 @@ codes! {
     E0307 = "E0307" "command-cycle" Error: "'!' commands nest too deep: a file probably includes itself.";
     E0308 = "E0308" "bad-data-file" Error: "A data file named by a primitive is malformed, or has the wrong number of dimensions.";
     E0309 = "E0309" "bad-picture-file" Error: "A file named as a picture is not a Radiance picture.";
+    E0310 = "E0310" "bad-mesh-file" Error: "A file named by a mesh is not a Radiance mesh file, or is damaged.";
     // --- scene warnings -----------------------------------------------------------
     W0101 = "W0101" "invalid-utf8" Warning: "The file is not valid UTF-8; invalid bytes were read as '?'.";
     W0103 = "W0103" "nul-byte" Warning: "A word contains a NUL byte; Radiance ignores the rest of that word.";

@@ -40,6 +40,10 @@ pub struct Prim {
     /// The transform written at the end of the string arguments (instances, meshes,
     /// patterns, textures, mixtures), parsed; identity when there is none.
     pub transform: crate::transform::Transform,
+    /// For a material read from a mesh file: the `mesh` primitive whose frame its
+    /// functions are evaluated in (Radiance's `rox`: the mesh's transform applies
+    /// before the primitive's own). `None` for everything written in the scene.
+    pub frame: Option<PrimId>,
     pub kind: PrimKind,
     pub span: Span,
 }
@@ -104,6 +108,10 @@ pub enum PrimKind {
     Mesh {
         file: String,
         transform: Vec<String>,
+        /// With a `void` modifier, the materials its triangles name, by their index in
+        /// the mesh file, read from the file and appended to the scene (each with
+        /// [`Prim::frame`] this mesh); empty otherwise.
+        materials: Vec<PrimId>,
     },
     // --- materials ----------------------------------------------------------------
     Light {
@@ -196,11 +204,15 @@ pub struct Scene {
 pub struct AuxData {
     pub files: std::collections::BTreeMap<String, std::sync::Arc<crate::datafile::DataFile>>,
     pub pictures: std::collections::BTreeMap<String, std::sync::Arc<Vec<u8>>>,
+    /// Mesh files, read and checked, by name as written.
+    pub meshes: std::collections::BTreeMap<String, std::sync::Arc<crate::compiled::MeshFile>>,
 }
 
 impl PartialEq for AuxData {
     fn eq(&self, other: &Self) -> bool {
-        self.files.keys().eq(other.files.keys()) && self.pictures.keys().eq(other.pictures.keys())
+        self.files.keys().eq(other.files.keys())
+            && self.pictures.keys().eq(other.pictures.keys())
+            && self.meshes.keys().eq(other.meshes.keys())
     }
 }
 

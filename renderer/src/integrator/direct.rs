@@ -291,7 +291,7 @@ impl Tracer<'_> {
                 sr.point = sr.org + sr.dir * h.t;
                 sr.normal = h.normal;
                 sr.rod = h.rod;
-                self.shade_object(sr, h.object);
+                self.shade_object(sr, h.object, h.sub);
                 participate(sr);
                 let mean = (sr.color.x + sr.color.y + sr.color.z) / 3.0;
                 (mean > FTINY).then(|| sr.color * c)

@@ -189,7 +189,7 @@ impl<'a> Tracer<'a> {
             r.point = r.org + r.dir * c.t;
             r.normal = c.normal;
             r.rod = c.rod;
-            self.shade_object(r, c.object);
+            self.shade_object(r, c.object, c.sub);
         } else if limit.is_finite() {
             // Stopped by the aft plane: nothing seen, not even distant sources.
         } else if let Some(d) = self.distant_hit(r) {
@@ -202,7 +202,7 @@ impl<'a> Tracer<'a> {
 
     /// Shades a surface hit (`raycont`): surfaces whose modifier the ray's antimatter set
     /// holds are passed through.
-    fn shade_object(&self, r: &mut RayState, object: u32) {
+    fn shade_object(&self, r: &mut RayState, object: u32, sub: u32) {
         let Some(o) = self.scene.hit_info(object) else {
             return;
         };
@@ -210,7 +210,31 @@ impl<'a> Tracer<'a> {
             r.other_length = r.length;
             return self.transmit(r);
         }
-        self.shade(r, o.material());
+        let material = if o.mesh {
+            self.mesh_surface(r, object, sub)
+        } else {
+            o.material()
+        };
+        self.shade(r, material);
+    }
+
+    /// A mesh hit's smoothed normal and (u,v) into `r`, and its material: the
+    /// triangle's own when the mesh's modifier is `void` and the triangle has one,
+    /// otherwise the mesh's (o_mesh.c).
+    fn mesh_surface(&self, r: &mut RayState, object: u32, sub: u32) -> Option<MaterialId> {
+        let o = self.scene.object(object)?;
+        let crate::shapes::Shape::Mesh(mesh) = &o.shape else {
+            return o.material;
+        };
+        let s = mesh.surface(&Ray::new(r.org, r.dir), sub, r.normal);
+        r.pert = s.pert;
+        r.uv = s.uv;
+        match usize::try_from(s.material) {
+            Ok(m) if !o.triangle_materials.is_empty() => {
+                o.triangle_materials.get(m).copied().flatten()
+            }
+            _ => o.material,
+        }
     }
 
     /// Shades a hit with `material` (`rayshade`); no material lets the ray through.
@@ -219,6 +243,11 @@ impl<'a> Tracer<'a> {
             && let Some(patterns) = self.scene.patterns_of(id)
         {
             return self.shade_patterned(r, id, patterns);
+        }
+        if let Some(id) = material
+            && r.pert != Vec3::ZERO
+        {
+            return self.shade_patterned(r, id, &[]);
         }
         self.shade_with(r, material.and_then(|m| self.scene.material(m)));
     }
@@ -237,17 +266,21 @@ impl<'a> Tracer<'a> {
         {
             return;
         }
-        let Some(functions) = self.scene.functions.as_deref() else {
-            return self.shade_with(r, Some(material));
-        };
         let view = r.view();
         let mut pcol = Color::ONE;
-        let mut pert = Vec3::ZERO;
-        for &i in patterns {
-            if let Some(p) = functions.patterns.get(i as usize) {
-                p.apply(functions, i, &view, &mut pcol, &mut pert);
+        // The surface's own perturbation comes first; textures add to it.
+        let mut pert = r.pert;
+        if let Some(functions) = self.scene.functions.as_deref() {
+            for &i in patterns {
+                if let Some(p) = functions.patterns.get(i as usize) {
+                    p.apply(functions, i, &view, &mut pcol, &mut pert);
+                }
             }
+        } else if pert == Vec3::ZERO {
+            return self.shade_with(r, Some(material));
         }
+        // What the material shades with, and what `-on` reports (`r->pert`).
+        r.pert = pert;
         let mut shaded = material.clone();
         match &mut shaded {
             Material::Plastic(n) => {
@@ -448,6 +481,8 @@ impl<'a> Tracer<'a> {
             passages,
             seed,
             ambient_depth: r.ambient_depth + u32::from(kind == RayKind::AMBIENT),
+            pert: Vec3::ZERO,
+            uv: [0.0, 0.0],
         })
     }
 }

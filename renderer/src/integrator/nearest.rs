@@ -14,6 +14,8 @@ pub(super) struct Candidate {
     pub(super) t: f64,
     pub(super) normal: Vec3,
     pub(super) rod: f64,
+    /// [`ShapeHit::sub`].
+    pub(super) sub: u32,
 }
 
 impl Tracer<'_> {
@@ -69,6 +71,7 @@ impl Tracer<'_> {
                         t: h.t,
                         normal: h.normal,
                         rod: h.rod,
+                        sub: h.sub,
                     };
                     if !self.rejects(best.as_ref(), &cand) {
                         best = Some(cand);

@@ -62,6 +62,12 @@ pub struct RayState {
     /// Ambient rays among this ray's ancestors (and itself): Radiance's ambient
     /// recursion depth, compared with `-ab`.
     pub ambient_depth: u32,
+    /// The perturbation of the normal (`pert`): the surface's own at the hit (a
+    /// smoothed mesh's interpolated normal less the triangle's, o_mesh.c), to which
+    /// the textures add theirs when shading; flipped with the surface.
+    pub pert: Vec3,
+    /// The surface's (u,v) (`Lu`, `Lv`: a mesh's interpolated texture coordinates).
+    pub uv: [f64; 2],
 }
 
 impl RayState {
@@ -93,6 +99,8 @@ impl RayState {
             passages: Vec::new(),
             seed: 0,
             ambient_depth: 0,
+            pert: Vec3::ZERO,
+            uv: [0.0, 0.0],
         }
     }
 
@@ -100,7 +108,25 @@ impl RayState {
     pub fn flip(&mut self) {
         self.rod = -self.rod;
         self.normal = -self.normal;
+        self.pert = -self.pert;
         self.flips += 1;
+    }
+
+    /// `raynormal`: the normal with the perturbation added, turned back to the ray's
+    /// side of the surface when the perturbation crossed it (rtrace's `-on`).
+    pub fn perturbed_normal(&self) -> Vec3 {
+        if self.pert == Vec3::ZERO {
+            return self.normal;
+        }
+        let mut n = self.normal + self.pert;
+        if crate::math::normalize(&mut n) == 0.0 {
+            return self.normal;
+        }
+        let newdot = -n.dot(self.dir);
+        if (newdot > 0.0) != (self.rod > 0.0) {
+            n += self.dir * (2.0 * newdot);
+        }
+        n
     }
 
     /// `raydistance`: where the ray's value appears to come from.
@@ -151,7 +177,7 @@ impl RayState {
             total_distance: self.path_length + self.length,
             length: self.length,
             rod: self.rod,
-            uv: [0.0, 0.0],
+            uv: self.uv,
         }
     }
 }

@@ -85,6 +85,7 @@ impl Cone {
                 t,
                 normal,
                 rod: -ray.dir.dot(normal),
+                sub: 0,
             });
         }
         None

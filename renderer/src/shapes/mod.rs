@@ -2,12 +2,14 @@
 //! parallel to a plane within `FTINY` miss) and its normals and sides.
 
 pub mod cone;
+pub mod mesh;
 pub mod packed;
 pub mod polygon;
 pub mod ring;
 pub mod sphere;
 
 pub use cone::Cone;
+pub use mesh::{MeshGeometry, MeshShape, MeshSurface};
 pub use packed::{PackedPolygon, Quad, Triangle};
 pub use polygon::Polygon;
 pub use ring::Ring;
@@ -22,6 +24,7 @@ pub enum Shape {
     Polygon(Polygon),
     Ring(Ring),
     Cone(Cone),
+    Mesh(MeshShape),
 }
 
 impl Shape {
@@ -33,6 +36,7 @@ impl Shape {
             Shape::Polygon(p) => p.intersect(ray),
             Shape::Ring(r) => r.intersect(ray),
             Shape::Cone(c) => c.intersect(ray),
+            Shape::Mesh(m) => m.intersect_within(ray, f64::INFINITY),
         }
     }
 
@@ -43,6 +47,7 @@ impl Shape {
             Shape::Polygon(p) => p.intersect_within(ray, tmax),
             Shape::Ring(r) => r.intersect(ray).filter(|h| h.t <= tmax),
             Shape::Cone(c) => c.intersect(ray).filter(|h| h.t <= tmax),
+            Shape::Mesh(m) => m.intersect_within(ray, tmax),
         }
     }
 
@@ -52,6 +57,7 @@ impl Shape {
             Shape::Polygon(p) => p.bounds(),
             Shape::Ring(r) => r.bounds(),
             Shape::Cone(c) => c.bounds(),
+            Shape::Mesh(m) => m.bounds(),
         }
     }
 

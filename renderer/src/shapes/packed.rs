@@ -79,6 +79,7 @@ impl<const N: usize> PackedPolygon<N> {
             t,
             normal: self.normal,
             rod,
+            sub: 0,
         })
     }
 

@@ -139,6 +139,7 @@ impl Polygon {
             t,
             normal: self.normal,
             rod,
+            sub: 0,
         })
     }
 

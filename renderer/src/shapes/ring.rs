@@ -45,6 +45,7 @@ impl Ring {
             t,
             normal: self.normal,
             rod: -rdot,
+            sub: 0,
         })
     }
 

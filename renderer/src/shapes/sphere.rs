@@ -89,6 +89,7 @@ impl PackedSphere {
             t,
             normal,
             rod: -ray.dir.dot(normal),
+            sub: 0,
         })
     }
 }
@@ -199,6 +200,7 @@ mod tests {
                 t,
                 normal,
                 rod: -ray.dir.dot(normal),
+                sub: 0,
             })
         };
         let (mut hits, mut checked) = (0, 0);

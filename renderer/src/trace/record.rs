@@ -79,7 +79,7 @@ pub(super) fn write_ray(out: &mut OutBuf, r: &RayState, scene: &Scene, a: &Trace
                 &if no_hit {
                     [0.0; 3]
                 } else {
-                    r.normal.to_array()
+                    r.perturbed_normal().to_array()
                 },
             ),
             Output::SurfaceNormal => put(
@@ -104,7 +104,7 @@ pub(super) fn write_ray(out: &mut OutBuf, r: &RayState, scene: &Scene, a: &Trace
             Output::Tilde => out.push(b"~\t"),
             Output::Weight => put(out, a.output, &[r.weight]),
             // Local (u, v) coordinates: zero for every surface but meshes in Radiance.
-            Output::LocalCoordinates => put(out, a.output, &[0.0, 0.0]),
+            Output::LocalCoordinates => put(out, a.output, &r.uv),
         }
     }
     if a.output == RayEncoding::Ascii {

@@ -138,6 +138,9 @@ impl Lowering<'_> {
                 );
                 continue;
             }
+            if kind == FileKind::Mesh {
+                self.check_mesh_file(w);
+            }
             if kind == FileKind::Picture {
                 self.picture_files
                     .entry(w.text.clone())

@@ -131,6 +131,7 @@ impl Lowering<'_> {
             "mesh" => PrimKind::Mesh {
                 file: first_string().unwrap_or_default(),
                 transform: s.iter().skip(1).cloned().collect(),
+                materials: Vec::new(),
             },
             "light" => PrimKind::Light { color: rgb(0) },
             "illum" => PrimKind::Illum {

@@ -19,6 +19,7 @@ mod deferred;
 mod files;
 mod geometry;
 mod kind;
+mod meshes;
 mod resolve;
 
 pub use files::{AssumeFilesExist, FileLookup};
@@ -123,6 +124,9 @@ pub struct Lowering<'a> {
     /// Pictures named, with the file naming each: read in `finish`, and only for a
     /// render (`Keep::Everything`) and reachable primitives, as they can be large.
     picture_files: HashMap<String, FileId>,
+    /// Mesh files named, with the first word naming each: read in `finish` for a
+    /// render and reachable meshes.
+    mesh_files: HashMap<String, Span>,
 }
 
 impl<'a> Lowering<'a> {
@@ -149,6 +153,7 @@ impl<'a> Lowering<'a> {
             function_files: HashMap::new(),
             data_files: HashMap::new(),
             picture_files: HashMap::new(),
+            mesh_files: HashMap::new(),
             missing_files: HashMap::new(),
             more_users: HashMap::new(),
         }
@@ -174,6 +179,7 @@ impl<'a> Lowering<'a> {
                     .insert(name, std::sync::Arc::new(f.module));
             }
         }
+        self.keep_meshes();
         self.keep_aux_data();
         (self.scene, self.diags)
     }
@@ -301,6 +307,7 @@ impl Lowering<'_> {
             modifier,
             refs,
             transform,
+            frame: None,
             kind,
             span: p.span,
         };

@@ -211,6 +211,7 @@ impl Lowering<'_> {
             modifier,
             refs: Vec::new(),
             transform: Transform::IDENTITY,
+            frame: None,
             kind,
             span: a.span,
         };
