@@ -70,8 +70,9 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             .collect();
         let rays = std::fs::read(trace_data().join(format!("{id}.rays"))).expect("rays");
         let rsc = dir.path().join(format!("{id}.rsc"));
-        // Patterns and textures are compiled at render time: such scenes are stored as
-        // read (a scene bundle), the others compiled.
+        // Patterns and textures are compiled at render time, and meshes' geometry is
+        // read from their files: such scenes are stored as read (a scene bundle), the
+        // others compiled.
         let with_functions = [
             "patterns-",
             "textures-",
@@ -88,6 +89,7 @@ fn compiled_scenes_trace_exactly_like_their_text() {
             "trans_textures-",
             "dielectric_patterns-",
             "ashik-",
+            "meshes-",
         ]
         .iter()
         .any(|p| id.starts_with(p));
@@ -395,4 +397,42 @@ fn render_warns_about_a_view_inside_geometry() {
         b"",
     );
     assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+}
+
+/// A built scene names its mesh files (the bundle holds no copy: it stays small) and
+/// refuses one that changed since.
+#[test]
+fn built_scenes_refer_to_mesh_files_and_refuse_changed_ones() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let scenes = trace_data().join("scenes");
+    let mesh = dir.path().join("ball.rtm");
+    std::fs::copy(scenes.join("ball.rtm"), &mesh).expect("copy");
+    let rad = dir.path().join("m.rad");
+    std::fs::write(
+        &rad,
+        format!("{LAMP}void plastic grey 0 0 5 .5 .5 .5 0 0\ngrey mesh ball 1 ball.rtm 0 0\n"),
+    )
+    .expect("write");
+    let rsc = dir.path().join("m.rsc");
+    build(&[rad], &rsc);
+    let size = std::fs::metadata(&rsc).expect("built").len();
+    let mesh_size = std::fs::metadata(&mesh).expect("mesh").len();
+    assert!(
+        size < mesh_size / 4,
+        "{size} bytes for a {mesh_size}-byte mesh"
+    );
+    let ray = b"0 0 3 0 0 -1\n";
+    let o = radc(&["trace", "-h", s(&rsc)], ray);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(o.stdout, b"0.000000e+00\t0.000000e+00\t0.000000e+00\t\n");
+    let mut bytes = std::fs::read(&mesh).expect("mesh");
+    bytes.push(b'\n');
+    std::fs::write(&mesh, bytes).expect("change it");
+    let o = radc(&["trace", "-h", s(&rsc)], ray);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("mesh file 'ball.rtm' changed since the scene was built"),
+        "{}",
+        stderr(&o)
+    );
 }

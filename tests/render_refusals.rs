@@ -48,7 +48,7 @@ fn types_in_trace_goldens() -> BTreeSet<String> {
 }
 
 /// Files the refusal scenes name: a function file, a data file, a picture, a font,
-/// an octree, a mesh and a BSDF, just valid enough for `radc check` to accept them.
+/// an octree and a BSDF, just valid enough for `radc check` to accept them.
 fn write_auxiliary_files(dir: &Path) {
     std::fs::write(
         dir.join("f.cal"),
@@ -61,7 +61,6 @@ fn write_auxiliary_files(dir: &Path) {
     std::fs::write(dir.join("p.hdr"), pic).expect("p.hdr");
     std::fs::write(dir.join("t.fnt"), "65 4 0 0 255 0 255 255 0 255\n").expect("t.fnt");
     std::fs::write(dir.join("o.oct"), "#?RADIANCE\nFORMAT=Radiance_octree\n\n").expect("o.oct");
-    std::fs::write(dir.join("m.rtm"), "#?RADIANCE\nFORMAT=Radiance_mesh\n\n").expect("m.rtm");
     std::fs::write(dir.join("b.xml"), "<WindowElement></WindowElement>\n").expect("b.xml");
 }
 
@@ -73,7 +72,6 @@ fn refusal_scene(type_name: &str) -> Option<String> {
     let material = |def: &str| format!("{def}\n");
     let body = match type_name {
         "instance" => "void instance x 1 o.oct 0 0\n".to_string(),
-        "mesh" => "void mesh x 1 m.rtm 0 0\n".to_string(),
         "brighttext" => {
             pattern_on_material("void brighttext x 3 t.fnt . A 0 11 0 0 0 1 0 0 0 1 0 1 0")
         }
@@ -98,7 +96,7 @@ fn refusal_scene(type_name: &str) -> Option<String> {
         "prism2" => material("void prism2 m 9 v v v v v v v v f.cal 0 0"),
         _ => return None,
     };
-    let surface = if matches!(type_name, "instance" | "mesh") {
+    let surface = if type_name == "instance" {
         String::new()
     } else {
         "m polygon floor 0 0 12 -5 -5 0 5 -5 0 5 5 0 -5 5 0\n".to_string()

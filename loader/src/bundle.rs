@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 /// The first bytes of a bundle.
 pub const MAGIC: &[u8; 8] = b"RADCSRC\x1a";
 /// The layout of the header and of [`SceneBundle`].
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 const RADC_VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// A scene as it was read: its files and its commands' outputs.
@@ -24,6 +24,50 @@ pub struct SceneBundle {
     pub files: Vec<BundledFile>,
     /// Every command expansion, in the order the reading asked for them.
     pub expansions: Vec<RecordedExpansion>,
+    /// The mesh files the scene places, as they were when it was built: they are read
+    /// again by name when it is loaded (the bundle holds no copy), and refused if they
+    /// changed.
+    pub meshes: Vec<MeshStamp>,
+}
+
+/// A mesh file by name as written, with its length and CRC-32 when built.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeshStamp {
+    pub name: String,
+    pub length: u64,
+    pub checksum: u32,
+}
+
+impl SceneBundle {
+    /// Records the mesh files of a lowered scene.
+    pub fn stamp_meshes(&mut self, ir: &radc_lang::scene::ir::Scene) {
+        self.meshes = ir
+            .data
+            .meshes
+            .iter()
+            .map(|(name, m)| MeshStamp {
+                name: name.clone(),
+                length: m.length,
+                checksum: m.checksum,
+            })
+            .collect();
+    }
+
+    /// The first mesh file of a lowered scene that differs from the one built with.
+    pub fn changed_mesh(&self, ir: &radc_lang::scene::ir::Scene) -> Option<String> {
+        self.meshes.iter().find_map(|stamp| {
+            let now = ir.data.meshes.get(&stamp.name);
+            let same = now.is_some_and(|m| m.length == stamp.length && m.checksum == stamp.checksum);
+            (!same).then(|| {
+                format!(
+                    "mesh file '{}' changed since the scene was built (CRC-32 {:08x} then, {}                      now); rebuild the scene with 'radc build'",
+                    stamp.name,
+                    stamp.checksum,
+                    now.map_or("missing or unreadable".to_string(), |m| format!("{:08x}", m.checksum))
+                )
+            })
+        })
+    }
 }
 
 /// A scene file named on the command line (or standard input).
@@ -160,6 +204,11 @@ mod tests {
                 command: "gensky 3 21 12".into(),
                 dir: "/tmp".into(),
                 outcome: RecordedOutcome::Text("void brightfunc skyfunc ...".into()),
+            }],
+            meshes: vec![MeshStamp {
+                name: "ball.rtm".into(),
+                length: 30893,
+                checksum: 0x1234_5678,
             }],
         }
     }

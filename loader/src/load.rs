@@ -73,6 +73,14 @@ pub fn load_scene(paths: &[PathBuf], options: LoadOptions) -> SceneLoad {
         }
         Some(Ok(Stored::Bundle(bundle))) => {
             let ir = read_bundle(&bundle, Keep::Everything, &mut sources, &mut diags);
+            if let Some(changed) = bundle.changed_mesh(&ir) {
+                return SceneLoad {
+                    sources,
+                    diagnostics: diags,
+                    scene: Err(LoadError::Refused(vec![changed])),
+                    bundle: None,
+                };
+            }
             (ir, bundle)
         }
         None => read_scene_bundled(

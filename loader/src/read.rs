@@ -64,7 +64,13 @@ pub fn read_scene_bundled(
         sources,
         diags,
     );
-    (scene, SceneBundle { files, expansions })
+    let mut bundle = SceneBundle {
+        files,
+        expansions,
+        meshes: Vec::new(),
+    };
+    bundle.stamp_meshes(&scene);
+    (scene, bundle)
 }
 
 /// Reads the scene a [`SceneBundle`] holds, as [`read_scene`] read it when it was

@@ -419,8 +419,10 @@ mod lanes {
     }
 }
 
+/// The binary tree the build makes before it is collapsed to eight-wide nodes: a
+/// leaf is a range of the build's item array (in its final order).
 enum Build {
-    Leaf(Bounds, Vec<u32>),
+    Leaf(Bounds, std::ops::Range<usize>),
     Interior(Bounds, Box<Build>, Box<Build>),
 }
 
@@ -432,32 +434,47 @@ impl Build {
     }
 }
 
+/// A primitive as the build sorts it (56 bytes: a mesh of millions of triangles is
+/// built in one array of these, partitioned in place).
 #[derive(Clone, Copy)]
 struct Item {
     index: u32,
     bounds: Bounds,
-    centroid: Vec3,
+}
+
+impl Item {
+    #[inline(always)]
+    fn centroid(&self) -> Vec3 {
+        self.bounds.centroid()
+    }
 }
 
 impl Bvh {
     pub fn build(bounds: &[Bounds]) -> Bvh {
-        let items: Vec<Item> = bounds
-            .iter()
-            .enumerate()
+        Bvh::build_with(bounds.len(), |i| bounds[i])
+    }
+
+    /// [`Bvh::build`] over `n` primitives whose boxes `bounds` gives: no list of boxes
+    /// is held beside the build's own items.
+    pub fn build_with(n: usize, bounds: impl Fn(usize) -> Bounds) -> Bvh {
+        let mut items: Vec<Item> = (0..n)
+            .map(|i| (i, bounds(i)))
             .filter(|(_, b)| b.min.is_finite() && b.max.is_finite())
             .map(|(i, b)| Item {
                 index: i as u32,
-                bounds: *b,
-                centroid: b.centroid(),
+                bounds: b,
             })
             .collect();
         if items.is_empty() {
             return Bvh::default();
         }
         let rule = LeafRule::for_scene(items.len());
-        let tree = build(items, 0, rule);
-        let mut bvh = Bvh::default();
-        let link = bvh.flatten(&tree);
+        let tree = build(&mut items, 0, 0, rule);
+        let mut bvh = Bvh {
+            order: Vec::with_capacity(items.len()),
+            ..Bvh::default()
+        };
+        let link = bvh.flatten(&tree, &items);
         bvh.root.set(0, tree.bounds(), link);
         bvh
     }
@@ -540,14 +557,15 @@ impl Bvh {
 
     /// Flattens `b` depth-first, each binary node's subtree opened (the largest boxes
     /// first) into one node of up to `WIDTH` children.
-    fn flatten(&mut self, b: &Build) -> Link {
+    fn flatten(&mut self, b: &Build, items: &[Item]) -> Link {
         let (l, r) = match b {
-            Build::Leaf(_, idx) => {
+            Build::Leaf(_, range) => {
                 let first = self.order.len() as u32;
-                self.order.extend(idx);
+                self.order
+                    .extend(items[range.clone()].iter().map(|i| i.index));
                 return Link {
                     first,
-                    count: idx.len() as u32,
+                    count: range.len() as u32,
                 };
             }
             Build::Interior(_, l, r) => (l, r),
@@ -574,7 +592,7 @@ impl Bvh {
         self.nodes.push(Node::default());
         let mut node = Node::default();
         for (lane, k) in kids.iter().enumerate() {
-            let link = self.flatten(k);
+            let link = self.flatten(k, items);
             node.set(lane, k.bounds(), link);
         }
         self.nodes[at] = node;
@@ -882,14 +900,17 @@ fn bounds_of(items: &[Item]) -> (Bounds, Bounds) {
     items
         .iter()
         .fold((Bounds::EMPTY, Bounds::EMPTY), |(b, c), it| {
-            (b.union(it.bounds), c.union(Bounds::point(it.centroid)))
+            (b.union(it.bounds), c.union(Bounds::point(it.centroid())))
         })
 }
 
-fn build(mut items: Vec<Item>, depth: u32, rule: LeafRule) -> Build {
-    let (bounds, cbounds) = bounds_of(&items);
+/// Builds the tree over `items` (which start at `at` in the whole array), reordering
+/// them in place: each split is a stable partition, so the order, and the tree, are
+/// what splitting into separate lists would give.
+fn build(items: &mut [Item], at: usize, depth: u32, rule: LeafRule) -> Build {
+    let (bounds, cbounds) = bounds_of(items);
     if items.len() <= rule.size {
-        return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
+        return Build::Leaf(bounds, at..at + items.len());
     }
     let extent = cbounds.max - cbounds.min;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
@@ -900,7 +921,7 @@ fn build(mut items: Vec<Item>, depth: u32, rule: LeafRule) -> Build {
         2
     };
     if extent[axis] <= 0.0 || !extent[axis].is_finite() || depth >= SAH_DEPTH {
-        return split_middle(items, bounds, axis, depth, rule);
+        return split_middle(items, at, bounds, axis, depth, rule);
     }
     // A small scene's build can afford to try every axis; a large one's splits the
     // widest.
@@ -913,57 +934,76 @@ fn build(mut items: Vec<Item>, depth: u32, rule: LeafRule) -> Build {
         .iter()
         .copied()
         .filter(|&a| extent[a] > 0.0 && extent[a].is_finite())
-        .filter_map(|a| sah_split(&items, &cbounds, a, bounds, rule).map(|(c, b)| (c, a, b)))
+        .filter_map(|a| sah_split(items, &cbounds, a, bounds, rule).map(|(c, b)| (c, a, b)))
         .min_by(|x, y| x.0.total_cmp(&y.0));
     let Some((_, axis, split)) = best else {
         if items.len() <= rule.max {
-            return Build::Leaf(bounds, items.iter().map(|i| i.index).collect());
+            return Build::Leaf(bounds, at..at + items.len());
         }
-        return split_middle(items, bounds, axis, depth, rule);
+        return split_middle(items, at, bounds, axis, depth, rule);
     };
     let (lo, span) = (cbounds.min[axis], extent[axis]);
     let bin = |c: Vec3| (((c[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
-    let right: Vec<Item> = items
-        .iter()
-        .filter(|i| bin(i.centroid) > split)
-        .copied()
-        .collect();
-    items.retain(|i| bin(i.centroid) <= split);
-    if items.is_empty() || right.is_empty() {
-        items.extend(right);
-        return split_middle(items, bounds, axis, depth, rule);
+    let left = stable_partition(items, |i| bin(i.centroid()) <= split);
+    if left == 0 || left == items.len() {
+        return split_middle(items, at, bounds, axis, depth, rule);
     }
-    children(items, right, bounds, depth, rule)
+    children(items, at, left, bounds, depth, rule)
+}
+
+/// Moves the items for which `keep` holds to the front, keeping the order on both
+/// sides; the number kept. Only the others are copied out meanwhile.
+fn stable_partition(items: &mut [Item], keep: impl Fn(&Item) -> bool) -> usize {
+    let mut right = Vec::new();
+    let mut n = 0;
+    for i in 0..items.len() {
+        let it = items[i];
+        if keep(&it) {
+            items[n] = it;
+            n += 1;
+        } else {
+            right.push(it);
+        }
+    }
+    items[n..].copy_from_slice(&right);
+    n
 }
 
 fn children(
-    left: Vec<Item>,
-    right: Vec<Item>,
+    items: &mut [Item],
+    at: usize,
+    mid: usize,
     bounds: Bounds,
     depth: u32,
     rule: LeafRule,
 ) -> Build {
-    let (l, r) = if left.len() + right.len() > PARALLEL_THRESHOLD {
+    let parallel = items.len() > PARALLEL_THRESHOLD;
+    let (left, right) = items.split_at_mut(mid);
+    let (l, r) = if parallel {
         rayon::join(
-            || build(left, depth + 1, rule),
-            || build(right, depth + 1, rule),
+            || build(left, at, depth + 1, rule),
+            || build(right, at + mid, depth + 1, rule),
         )
     } else {
-        (build(left, depth + 1, rule), build(right, depth + 1, rule))
+        (
+            build(left, at, depth + 1, rule),
+            build(right, at + mid, depth + 1, rule),
+        )
     };
     Build::Interior(bounds, Box::new(l), Box::new(r))
 }
 
 fn split_middle(
-    mut items: Vec<Item>,
+    items: &mut [Item],
+    at: usize,
     bounds: Bounds,
     axis: usize,
     depth: u32,
     rule: LeafRule,
 ) -> Build {
-    items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-    let right = items.split_off(items.len() / 2);
-    children(items, right, bounds, depth, rule)
+    items.sort_by(|a, b| a.centroid()[axis].total_cmp(&b.centroid()[axis]));
+    let mid = items.len() / 2;
+    children(items, at, mid, bounds, depth, rule)
 }
 
 /// The bin boundary along `axis` minimizing the surface area heuristic and its cost,
@@ -978,7 +1018,7 @@ fn sah_split(
     let (lo, span) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
     let mut bins = [(Bounds::EMPTY, 0usize); BINS];
     for it in items {
-        let b = (((it.centroid[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
+        let b = (((it.centroid()[axis] - lo) / span * BINS as f64) as usize).min(BINS - 1);
         bins[b].0 = bins[b].0.union(it.bounds);
         bins[b].1 += 1;
     }

@@ -54,7 +54,16 @@ pub struct Object {
     /// For a mesh with a `void` modifier: per material of its file, that material
     /// compiled (in the mesh's frame); empty for everything else.
     #[serde(default)]
-    pub triangle_materials: Vec<Option<MaterialId>>,
+    pub triangle_materials: Vec<TriangleMaterial>,
+}
+
+/// A mesh file's material as its triangles are shaded with it.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct TriangleMaterial {
+    pub material: Option<MaterialId>,
+    /// The modifier's name (rtrace `-om`) and its material's (`-oM`).
+    pub modifier_name: String,
+    pub material_name: String,
 }
 
 /// What tracing and shading read of a hit object, 16 bytes each apart from the
@@ -305,8 +314,8 @@ impl Scene {
         c.material_patterns
             .resize(scene.materials.len(), Vec::new());
         scene.material_patterns = c.material_patterns;
-        let bounds: Vec<_> = scene.objects.iter().map(|o| o.shape.bounds()).collect();
-        scene.bvh = Bvh::build(&bounds);
+        let objects = &scene.objects;
+        scene.bvh = Bvh::build_with(objects.len(), |i| objects[i].shape.bounds());
         scene.pack_surfaces();
         Ok(scene)
     }
@@ -351,6 +360,13 @@ impl Scene {
                         .collect::<Option<Vec<Lamp>>>()
                 })
                 .flatten();
+    }
+
+    /// Whether a surface is a mesh (compiled scene files do not hold their geometry).
+    pub fn has_meshes(&self) -> bool {
+        self.objects
+            .iter()
+            .any(|o| matches!(o.shape, Shape::Mesh(_)))
     }
 
     /// Checks the indices that tracing relies on: what a compiled scene file
@@ -551,7 +567,14 @@ impl Compiler<'_> {
         let (material, material_name) = self.material_of(p.modifier);
         let triangle_materials = materials
             .iter()
-            .map(|&m| self.material_of(ModRef::Prim(m)).0)
+            .map(|&m| {
+                let (material, material_name) = self.material_of(ModRef::Prim(m));
+                TriangleMaterial {
+                    material,
+                    modifier_name: self.modifier_name(ModRef::Prim(m)),
+                    material_name,
+                }
+            })
             .collect();
         self.scene.objects.push(Object {
             prim: id,

@@ -104,10 +104,15 @@ fn run_parsed(args: &[String]) -> ExitCode {
     // The scene's functions are compiled when it is rendered, and a compiled scene
     // cannot hold them: such a scene is stored as it was read (its texts and its
     // commands' outputs), and read, checked and compiled again when loaded.
-    let encoded = match (&scene.functions, bundle) {
-        (Some(_), Some(bundle)) => bundle.encode(),
-        (Some(_), None) => Err("a compiled scene with functions cannot be stored".to_string()),
-        (None, _) => scene_file::encode(&scene).map_err(|e| e.to_string()),
+    // So is a scene with meshes: the bundle names the mesh files, which are read again
+    // when it is loaded (and refused if they changed), so the file stays small.
+    let stored_as_read = scene.functions.is_some() || scene.has_meshes();
+    let encoded = match (stored_as_read, bundle) {
+        (true, Some(bundle)) => bundle.encode(),
+        (true, None) => {
+            Err("a compiled scene with functions or meshes cannot be stored".to_string())
+        }
+        (false, _) => scene_file::encode(&scene).map_err(|e| e.to_string()),
     };
     let bytes = match encoded {
         Ok(b) => b,

@@ -50,13 +50,16 @@ pub struct MeshFile {
     pub triangle_materials: Vec<i16>,
     /// Whether obj2mesh's octree was empty (Radiance warns "empty mesh octree").
     pub empty_tree: bool,
+    /// The file's length and CRC-32: a scene built with `radc build` refers to the
+    /// file by name and refuses it when these change.
+    pub length: u64,
+    pub checksum: u32,
 }
 
-/// A patch's triangles before joiners are resolved: vertex IDs as stored.
-struct RawTriangle {
-    ids: [i64; 3],
-    material: i16,
-}
+/// Marks a vertex reference read as a vertex ID (a joiner's `patch << 8 | index`),
+/// resolved to a vertex number once every patch is read; a local vertex is stored as
+/// its number. Both fit below it: at most 2^22 patches of 256 vertices.
+const UNRESOLVED: u32 = 1 << 31;
 
 impl MeshFile {
     /// Reads a whole mesh file.
@@ -81,14 +84,15 @@ impl MeshFile {
         if !(0..=1 << 22).contains(&npatches) {
             return r.error(at, "bad number of mesh patches");
         }
-        let mut raw = Vec::new();
         let mut patch_start = Vec::with_capacity(npatches as usize + 1);
         for _ in 0..npatches {
             patch_start.push(mesh.vertices.len() as u32);
-            mesh.read_patch(&mut r, &mut raw)?;
+            mesh.read_patch(&mut r)?;
         }
         patch_start.push(mesh.vertices.len() as u32);
-        mesh.resolve(&raw, &patch_start)?;
+        mesh.resolve(&patch_start)?;
+        mesh.length = bytes.len() as u64;
+        mesh.checksum = crc32fast::hash(bytes);
         Ok(mesh)
     }
 
@@ -135,8 +139,8 @@ impl MeshFile {
         hi[0] - lo[0] > FTINY && hi[1] - lo[1] > FTINY
     }
 
-    /// One patch (`getpatch`), its triangles' vertex IDs kept for [`MeshFile::resolve`].
-    fn read_patch(&mut self, r: &mut Reader<'_>, raw: &mut Vec<RawTriangle>) -> Result<()> {
+    /// One patch (`getpatch`); joiners' vertex IDs are left for [`MeshFile::resolve`].
+    fn read_patch(&mut self, r: &mut Reader<'_>) -> Result<()> {
         let at = r.offset();
         let flags = r.int(1)?;
         if flags & 1 == 0 || flags & !7 != 0 {
@@ -175,15 +179,15 @@ impl MeshFile {
         } else if !self.uvs.is_empty() {
             self.uvs.resize(self.vertices.len(), [0, 0]);
         }
-        // A vertex ID is the patch number above its index in the patch; local
-        // triangles use indices, resolved against this patch's first vertex.
-        let local = |i: i64| -> i64 { -1 - (first as i64 + i) };
+        // Local triangles use indices into this patch: vertex numbers from its first.
+        let local = |i: i64| -> u32 { first as u32 + i as u32 };
+        let id = |v: i64| -> u32 { (v as u32 & !UNRESOLVED) | UNRESOLVED };
         let at = r.offset();
         let ntris = r.int(2)?;
         if !(0..=512).contains(&ntris) {
             return r.error(at, "bad number of local triangles");
         }
-        let start = raw.len();
+        let start = self.triangles.len();
         for _ in 0..ntris {
             let a = r.int(1)? & 0xff;
             let b = r.int(1)? & 0xff;
@@ -191,26 +195,21 @@ impl MeshFile {
             if a >= n || b >= n || c >= n {
                 return r.error(r.offset() - 3, "bad local triangle index");
             }
-            raw.push(RawTriangle {
-                ids: [local(a), local(b), local(c)],
-                material: -1,
-            });
+            self.triangles.push([local(a), local(b), local(c)]);
         }
         let at = r.offset();
         if r.int(2)? > 1 {
-            for t in &mut raw[start..] {
-                t.material = r.int(2)? as i16;
+            for _ in start..self.triangles.len() {
+                self.triangle_materials.push(r.int(2)? as i16);
             }
         } else {
             let sole = r.int(2)? as i16;
-            for t in &mut raw[start..] {
-                t.material = sole;
-            }
+            self.triangle_materials.resize(self.triangles.len(), sole);
         }
         if !self.materials.is_empty()
-            && raw[start..]
+            && self.triangle_materials[start..]
                 .iter()
-                .any(|t| t.material < 0 || t.material as usize >= self.materials.len())
+                .any(|&m| m < 0 || m as usize >= self.materials.len())
         {
             return r.error(at, "bad local triangle material");
         }
@@ -227,11 +226,12 @@ impl MeshFile {
             if b >= n || c >= n {
                 return r.error(r.offset() - 4, "bad j1 triangle local index");
             }
+            if !(0..1 << 30).contains(&v1) {
+                return r.error(r.offset() - 8, "bad j1 triangle joiner");
+            }
             self.check_material(r, m, "bad j1 triangle material")?;
-            raw.push(RawTriangle {
-                ids: [v1, local(b), local(c)],
-                material: m,
-            });
+            self.triangles.push([id(v1), local(b), local(c)]);
+            self.triangle_materials.push(m);
         }
         let at = r.offset();
         let nj2 = r.int(2)?;
@@ -246,11 +246,12 @@ impl MeshFile {
             if c >= n {
                 return r.error(r.offset() - 3, "bad j2 triangle local index");
             }
+            if !(0..1 << 30).contains(&v1) || !(0..1 << 30).contains(&v2) {
+                return r.error(r.offset() - 11, "bad j2 triangle joiner");
+            }
             self.check_material(r, m, "bad j2 triangle material")?;
-            raw.push(RawTriangle {
-                ids: [v1, v2, local(c)],
-                material: m,
-            });
+            self.triangles.push([id(v1), id(v2), local(c)]);
+            self.triangle_materials.push(m);
         }
         Ok(())
     }
@@ -262,31 +263,22 @@ impl MeshFile {
         Ok(())
     }
 
-    /// Vertex IDs to vertex numbers: local indices were stored as `-1 - number`,
-    /// joiners' IDs (patch << 8 | index) are looked up in `patch_start`.
-    fn resolve(&mut self, raw: &[RawTriangle], patch_start: &[u32]) -> Result<()> {
-        self.triangles.reserve_exact(raw.len());
-        self.triangle_materials.reserve_exact(raw.len());
-        for t in raw {
-            let mut v = [0u32; 3];
-            for (k, &id) in t.ids.iter().enumerate() {
-                v[k] = if id < 0 {
-                    (-1 - id) as u32
-                } else {
-                    let (patch, index) = ((id >> 8) as usize, (id & 0xff) as u32);
-                    match (patch_start.get(patch), patch_start.get(patch + 1)) {
-                        (Some(&s), Some(&e)) if s + index < e => s + index,
-                        _ => {
-                            return Err(BinaryError {
-                                offset: 0,
-                                message: format!("bad triangle joiner (vertex ID {id})"),
-                            });
-                        }
+    /// Joiners' vertex IDs (patch << 8 | index) to vertex numbers, in place.
+    fn resolve(&mut self, patch_start: &[u32]) -> Result<()> {
+        for t in &mut self.triangles {
+            for v in t.iter_mut().filter(|v| **v & UNRESOLVED != 0) {
+                let id = *v & !UNRESOLVED;
+                let (patch, index) = ((id >> 8) as usize, id & 0xff);
+                *v = match (patch_start.get(patch), patch_start.get(patch + 1)) {
+                    (Some(&s), Some(&e)) if s + index < e => s + index,
+                    _ => {
+                        return Err(BinaryError {
+                            offset: 0,
+                            message: format!("bad triangle joiner (vertex ID {id})"),
+                        });
                     }
                 };
             }
-            self.triangles.push(v);
-            self.triangle_materials.push(t.material);
         }
         Ok(())
     }

@@ -230,8 +230,9 @@ impl<'a> Tracer<'a> {
         r.pert = s.pert;
         r.uv = s.uv;
         match usize::try_from(s.material) {
-            Ok(m) if !o.triangle_materials.is_empty() => {
-                o.triangle_materials.get(m).copied().flatten()
+            Ok(m) if m < o.triangle_materials.len() => {
+                r.triangle = u16::try_from(m).ok();
+                o.triangle_materials[m].material
             }
             _ => o.material,
         }
@@ -483,6 +484,7 @@ impl<'a> Tracer<'a> {
             ambient_depth: r.ambient_depth + u32::from(kind == RayKind::AMBIENT),
             pert: Vec3::ZERO,
             uv: [0.0, 0.0],
+            triangle: None,
         })
     }
 }

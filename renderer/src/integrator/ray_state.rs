@@ -68,6 +68,10 @@ pub struct RayState {
     pub pert: Vec3,
     /// The surface's (u,v) (`Lu`, `Lv`: a mesh's interpolated texture coordinates).
     pub uv: [f64; 2],
+    /// A hit on a mesh triangle shaded with the mesh file's own material: its index
+    /// in the mesh object's `triangle_materials`. Radiance then shades a stand-in face
+    /// (`getmeshpseudo`): flat, named `M-Tri`, modified by that material.
+    pub triangle: Option<u16>,
 }
 
 impl RayState {
@@ -101,6 +105,7 @@ impl RayState {
             ambient_depth: 0,
             pert: Vec3::ZERO,
             uv: [0.0, 0.0],
+            triangle: None,
         }
     }
 
@@ -152,7 +157,9 @@ impl RayState {
 
     pub fn hit_is_flat(&self, scene: &Scene) -> bool {
         match self.hit {
-            Target::Object(o) => scene.hit_info(o.0).is_some_and(|o| o.flat),
+            Target::Object(o) => {
+                self.triangle.is_some() || scene.hit_info(o.0).is_some_and(|o| o.flat)
+            }
             _ => false,
         }
     }

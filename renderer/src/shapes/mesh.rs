@@ -26,62 +26,48 @@ use crate::bvh::Bvh;
 use crate::math::{Bounds, FTINY, Vec3, normalize, vec3};
 use crate::ray::{Ray, ShapeHit};
 
-/// A mesh file's triangles in BVH slot order, with their tree.
+/// A mesh file's triangles under their tree. The file's triangle list is used as it
+/// is, through the tree's slot order: nothing is copied.
 pub struct MeshGeometry {
     pub file: Arc<MeshFile>,
-    /// Per slot: the triangle's vertices.
-    triangles: Vec<[u32; 3]>,
-    /// Per slot: the triangle's index in the file.
-    file_index: Vec<u32>,
     bvh: Bvh,
     bounds: Bounds,
 }
 
 impl std::fmt::Debug for MeshGeometry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "MeshGeometry({} triangles)", self.triangles.len())
+        write!(f, "MeshGeometry({} triangles)", self.file.triangles.len())
     }
 }
 
 impl MeshGeometry {
     /// Builds the tree over the file's triangles.
     pub fn new(file: Arc<MeshFile>) -> MeshGeometry {
-        let bounds: Vec<Bounds> = file
-            .triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| vec3(file.position(v)));
-                Bounds {
-                    min: a.min(b).min(c),
-                    max: a.max(b).max(c),
-                }
-            })
-            .collect();
-        let bvh = Bvh::build(&bounds);
-        let file_index = bvh.order().to_vec();
-        let triangles = file_index
-            .iter()
-            .map(|&i| file.triangles[i as usize])
-            .collect();
-        let all = bounds.iter().fold(Bounds::EMPTY, |a, b| a.union(*b));
-        MeshGeometry {
-            file,
-            triangles,
-            file_index,
-            bvh,
-            bounds: all,
-        }
+        let triangle_bounds = |i: usize| {
+            let [a, b, c] = file.triangles[i].map(|v| vec3(file.position(v)));
+            Bounds {
+                min: a.min(b).min(c),
+                max: a.max(b).max(c),
+            }
+        };
+        let bvh = Bvh::build_with(file.triangles.len(), triangle_bounds);
+        let bounds = bvh.extent().unwrap_or(Bounds::EMPTY);
+        MeshGeometry { file, bvh, bounds }
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
+        self.file.triangles.len()
     }
 
-    /// Bytes held beyond the file's vertex data: the tree and the triangles.
+    /// Bytes held beyond the file's data: the tree.
     pub fn bytes(&self) -> usize {
         self.bvh.bytes()
-            + std::mem::size_of_val(self.triangles.as_slice())
-            + std::mem::size_of_val(self.file_index.as_slice())
+    }
+
+    /// The file's index of the triangle in `slot`.
+    #[inline(always)]
+    fn triangle_at(&self, slot: u32) -> Option<u32> {
+        self.bvh.primitive(slot)
     }
 
     #[inline(always)]
@@ -93,7 +79,7 @@ impl MeshGeometry {
     /// it nearer than `best` (`mesh_hit`'s plane, after the inside test below).
     #[inline(always)]
     fn hit(&self, ray: &Sheared, slot: u32, best: f64) -> Option<(f64, Vec3)> {
-        let t = *self.triangles.get(slot as usize)?;
+        let t = *self.file.triangles.get(self.triangle_at(slot)? as usize)?;
         let [p0, p1, p2] = t.map(|v| self.position(v));
         let [q0, q1, q2] = [p0, p1, p2].map(|p| ray.project(p));
         let e0 = orientation(q0, q1);
@@ -170,7 +156,10 @@ impl Sheared {
     #[inline(always)]
     fn project(&self, p: Vec3) -> [f64; 2] {
         let a = p - self.ray.org;
-        [a[self.kx] - self.sx * a[self.kz], a[self.ky] - self.sy * a[self.kz]]
+        [
+            a[self.kx] - self.sx * a[self.kz],
+            a[self.ky] - self.sy * a[self.kz],
+        ]
     }
 }
 
@@ -308,13 +297,15 @@ impl MeshShape {
     pub fn surface(&self, ray: &Ray, slot: u32, normal: Vec3) -> MeshSurface {
         let g = &*self.geometry;
         let file = &*g.file;
-        let Some(&tri) = g.triangles.get(slot as usize) else {
+        let Some(index) = g.triangle_at(slot) else {
             return MeshSurface::default();
         };
-        let material = g
-            .file_index
-            .get(slot as usize)
-            .and_then(|&i| file.triangle_materials.get(i as usize))
+        let Some(&tri) = file.triangles.get(index as usize) else {
+            return MeshSurface::default();
+        };
+        let material = file
+            .triangle_materials
+            .get(index as usize)
             .copied()
             .unwrap_or(-1);
         let mut out = MeshSurface {
@@ -424,7 +415,9 @@ mod watertight {
             "/../tests/data/trace/scenes/box.rtm"
         ))
         .expect("box.rtm (Radiance's obj2mesh of box.obj)");
-        Arc::new(MeshGeometry::new(Arc::new(MeshFile::read(&bytes).expect("a mesh"))))
+        Arc::new(MeshGeometry::new(Arc::new(
+            MeshFile::read(&bytes).expect("a mesh"),
+        )))
     }
 
     fn placed(g: &Arc<MeshGeometry>, scale: f64, shift: f64) -> MeshShape {
@@ -458,7 +451,9 @@ mod watertight {
         let n = file.vertices.len() as u32;
         let mut seed = 12345u64;
         let mut next = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
         for scale in [1e-4, 1e-2, 1.0, 1e3, 1e5] {
@@ -492,7 +487,8 @@ mod watertight {
                             if (h.t - dist).abs() > 1e-3 * dist {
                                 eprintln!(
                                     "scale {scale} shift {shift}: hit at {} not {dist}; edge {a} {b} f {f} pa {pa} pb {pb} local {:?}",
-                                    h.t, mesh.local_ray(&ray)
+                                    h.t,
+                                    mesh.local_ray(&ray)
                                 );
                                 bad += 1;
                             }

@@ -116,11 +116,18 @@ fn names<'s>(r: &RayState, scene: &'s Scene, o: Output) -> &'s str {
     let (name, modifier, material) = match r.hit {
         Target::None => return "*",
         Target::Object(id) => match scene.object(id.0) {
-            Some(x) => (&x.name, &x.modifier_name, &x.material_name),
+            Some(x) => match r
+                .triangle
+                .and_then(|t| x.triangle_materials.get(usize::from(t)))
+            {
+                // Radiance's stand-in face for a mesh triangle with its own material.
+                Some(t) => ("M-Tri", &t.modifier_name, &t.material_name),
+                None => (x.name.as_str(), &x.modifier_name, &x.material_name),
+            },
             None => return "*",
         },
         Target::Distant(i) => match scene.distant.get(i as usize) {
-            Some(x) => (&x.name, &x.modifier_name, &x.material_name),
+            Some(x) => (x.name.as_str(), &x.modifier_name, &x.material_name),
             None => return "*",
         },
     };
